@@ -1,0 +1,42 @@
+#pragma once
+// Reading, writing and naming scenes.
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace strata::scene {
+
+// Limits applied to every loaded file; exceeding one is a SceneError naming the limit.
+struct LoadLimits {
+  uint64_t max_file_bytes = 512ull << 20;
+  uint64_t max_triangles = 8'000'000;
+  uint32_t max_instances = 65'536;
+  uint32_t max_lod_levels = 8;
+};
+
+// glTF 2.0 (.gltf with external or embedded buffers, or .glb). Throws SceneError.
+Scene load_gltf_file(const std::filesystem::path& path, const LoadLimits& limits = {});
+// A .glb held in memory (e.g. sent inline by a client). `label` names it in error messages.
+Scene load_glb_bytes(std::span<const uint8_t> bytes, const std::string& label,
+                     const LoadLimits& limits = {});
+
+// Writes the scene as .glb: MSFT_lod for LoD groups, glTF animations for the default animation,
+// strata-specific data (aperture, focus distance, environment, LoD schedule) in `extras`.
+// load_glb_bytes(export_glb(s)) == s for every built-in scene.
+std::vector<uint8_t> export_glb(const Scene& scene);
+void export_glb_file(const Scene& scene, const std::filesystem::path& path);
+
+// Deterministic procedural scenes: cornell (the default), carousel, lod-cliff, chess, foliage,
+// overlap-uv, stiff.
+std::vector<std::string> builtin_scene_names();
+bool is_builtin_scene(const std::string& name);
+Scene builtin_scene(const std::string& name);  // throws SceneError for an unknown name
+
+// A built-in name, or else a path to a .gltf/.glb file.
+Scene load_scene(const std::string& name_or_path, const LoadLimits& limits = {});
+
+}  // namespace strata::scene
