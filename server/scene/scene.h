@@ -25,6 +25,7 @@ struct Material {
   float metallic = 0.0f;
   float roughness = 1.0f;          // perceptual roughness; GGX alpha = roughness^2
   glm::vec3 emission{0.0f};        // emissiveFactor * KHR_materials_emissive_strength (radiance)
+  float specular = 1.0f;           // KHR_materials_specular specularFactor: dielectric F0 = 0.04 * specular
   bool double_sided = false;
   bool operator==(const Material&) const = default;
 };

@@ -1,0 +1,135 @@
+#include "gpu/pipeline.h"
+
+#include <algorithm>
+#include <map>
+
+#include "embedded_shaders.h"
+
+namespace strata::gpu {
+
+ComputePipeline::ComputePipeline(const Context& ctx, std::string shader, std::span<const Binding> bindings,
+                                 std::span<const SpecConstant> spec, uint32_t push_constant_bytes)
+    : ctx_(ctx), name_(std::move(shader)), bindings_(bindings.begin(), bindings.end()) {
+  std::vector<VkDescriptorSetLayoutBinding> lb;
+  for (const auto& b : bindings_) {
+    lb.push_back({b.binding, b.type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+  }
+  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  lci.bindingCount = uint32_t(lb.size());
+  lci.pBindings = lb.data();
+  check(vkCreateDescriptorSetLayout(ctx.device(), &lci, nullptr, &set_layout_), "vkCreateDescriptorSetLayout");
+  VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pli.setLayoutCount = 1;
+  pli.pSetLayouts = &set_layout_;
+  VkPushConstantRange pcr{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_constant_bytes};
+  if (push_constant_bytes > 0) {
+    pli.pushConstantRangeCount = 1;
+    pli.pPushConstantRanges = &pcr;
+  }
+  check(vkCreatePipelineLayout(ctx.device(), &pli, nullptr, &layout_), "vkCreatePipelineLayout");
+
+  auto words = shaders::spirv(name_);
+  VkShaderModuleCreateInfo smci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  smci.codeSize = words.size_bytes();
+  smci.pCode = words.data();
+  VkShaderModule module;
+  check(vkCreateShaderModule(ctx.device(), &smci, nullptr, &module), "vkCreateShaderModule");
+
+  std::vector<VkSpecializationMapEntry> entries;
+  std::vector<uint32_t> values;
+  for (const auto& s : spec) {
+    entries.push_back({s.id, uint32_t(values.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+    values.push_back(s.value);
+  }
+  VkSpecializationInfo si{uint32_t(entries.size()), entries.data(), values.size() * sizeof(uint32_t), values.data()};
+  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  ci.stage.module = module;
+  ci.stage.pName = "main";
+  ci.stage.pSpecializationInfo = entries.empty() ? nullptr : &si;
+  ci.layout = layout_;
+  VkResult r = vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_);
+  vkDestroyShaderModule(ctx.device(), module, nullptr);
+  check(r, ("vkCreateComputePipelines(" + name_ + ")").c_str());
+}
+
+ComputePipeline::~ComputePipeline() {
+  vkDestroyPipeline(ctx_.device(), pipeline_, nullptr);
+  vkDestroyPipelineLayout(ctx_.device(), layout_, nullptr);
+  vkDestroyDescriptorSetLayout(ctx_.device(), set_layout_, nullptr);
+}
+
+DescriptorSet::DescriptorSet(const Context& ctx, const ComputePipeline& pipeline)
+    : ctx_(ctx), bindings_(pipeline.bindings()) {
+  std::map<VkDescriptorType, uint32_t> counts;
+  for (const auto& b : bindings_) counts[b.type]++;
+  std::vector<VkDescriptorPoolSize> sizes;
+  for (auto [type, n] : counts) sizes.push_back({type, n});
+  VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pci.maxSets = 1;
+  pci.poolSizeCount = uint32_t(sizes.size());
+  pci.pPoolSizes = sizes.data();
+  check(vkCreateDescriptorPool(ctx.device(), &pci, nullptr, &pool_), "vkCreateDescriptorPool");
+  VkDescriptorSetLayout layout = pipeline.set_layout();
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = pool_;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &layout;
+  check(vkAllocateDescriptorSets(ctx.device(), &ai, &set_), "vkAllocateDescriptorSets");
+}
+
+DescriptorSet::~DescriptorSet() { vkDestroyDescriptorPool(ctx_.device(), pool_, nullptr); }
+
+VkDescriptorType DescriptorSet::type_of(uint32_t binding) const {
+  auto it = std::find_if(bindings_.begin(), bindings_.end(), [&](const Binding& b) { return b.binding == binding; });
+  if (it == bindings_.end()) throw GpuError("descriptor binding " + std::to_string(binding) + " is not in the layout");
+  return it->type;
+}
+
+void DescriptorSet::bind_buffer(uint32_t binding, const Buffer& buffer) {
+  VkDescriptorBufferInfo info{buffer.handle(), 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set_;
+  w.dstBinding = binding;
+  w.descriptorCount = 1;
+  w.descriptorType = type_of(binding);
+  w.pBufferInfo = &info;
+  vkUpdateDescriptorSets(ctx_.device(), 1, &w, 0, nullptr);
+}
+
+void DescriptorSet::bind_tlas(uint32_t binding, VkAccelerationStructureKHR tlas) {
+  VkWriteDescriptorSetAccelerationStructureKHR as{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
+  as.accelerationStructureCount = 1;
+  as.pAccelerationStructures = &tlas;
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, &as};
+  w.dstSet = set_;
+  w.dstBinding = binding;
+  w.descriptorCount = 1;
+  w.descriptorType = type_of(binding);
+  vkUpdateDescriptorSets(ctx_.device(), 1, &w, 0, nullptr);
+}
+
+void dispatch_2d(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, uint32_t width, uint32_t height,
+                 const void* push_constants, uint32_t push_bytes) {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline());
+  if (push_bytes > 0) vkCmdPushConstants(cmd, p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes, push_constants);
+  VkDescriptorSet s = set.handle();
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout(), 0, 1, &s, 0, nullptr);
+  vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
+}
+
+void compute_barrier(VkCommandBuffer cmd) {
+  VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+  mb.srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
+  mb.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+  mb.dstAccessMask = VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT |
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT;
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.memoryBarrierCount = 1;
+  dep.pMemoryBarriers = &mb;
+  vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+}  // namespace strata::gpu

@@ -1,0 +1,74 @@
+#pragma once
+// Compute pipelines from the SPIR-V compiled in at build time, with specialization constants,
+// and the descriptor sets that feed them.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "gpu/buffer.h"
+
+namespace strata::gpu {
+
+struct Binding {
+  uint32_t binding;
+  VkDescriptorType type;
+};
+
+struct SpecConstant {
+  uint32_t id;
+  uint32_t value;  // booleans as VK_TRUE / VK_FALSE
+};
+
+class ComputePipeline {
+ public:
+  ComputePipeline(const Context& ctx, std::string shader, std::span<const Binding> bindings,
+                  std::span<const SpecConstant> spec = {}, uint32_t push_constant_bytes = 0);
+  ~ComputePipeline();
+  ComputePipeline(const ComputePipeline&) = delete;
+  ComputePipeline& operator=(const ComputePipeline&) = delete;
+
+  VkPipeline pipeline() const { return pipeline_; }
+  VkPipelineLayout layout() const { return layout_; }
+  VkDescriptorSetLayout set_layout() const { return set_layout_; }
+  const std::string& name() const { return name_; }
+  const std::vector<Binding>& bindings() const { return bindings_; }
+
+ private:
+  const Context& ctx_;
+  std::string name_;
+  std::vector<Binding> bindings_;
+  VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkPipeline pipeline_ = VK_NULL_HANDLE;
+};
+
+// One descriptor set for one pipeline, in its own small pool.
+class DescriptorSet {
+ public:
+  DescriptorSet(const Context& ctx, const ComputePipeline& pipeline);
+  ~DescriptorSet();
+  DescriptorSet(const DescriptorSet&) = delete;
+  DescriptorSet& operator=(const DescriptorSet&) = delete;
+
+  void bind_buffer(uint32_t binding, const Buffer& buffer);
+  void bind_tlas(uint32_t binding, VkAccelerationStructureKHR tlas);
+  VkDescriptorSet handle() const { return set_; }
+
+ private:
+  VkDescriptorType type_of(uint32_t binding) const;
+  const Context& ctx_;
+  std::vector<Binding> bindings_;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+};
+
+// Binds pipeline and set (and push constants, if any), then dispatches enough 8x8 groups to cover
+// width x height.
+void dispatch_2d(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, uint32_t width, uint32_t height,
+                 const void* push_constants = nullptr, uint32_t push_bytes = 0);
+
+// Full compute-to-compute/transfer barrier between passes.
+void compute_barrier(VkCommandBuffer cmd);
+
+}  // namespace strata::gpu

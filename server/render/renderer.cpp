@@ -1,0 +1,206 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "include/bindings.h"
+
+namespace strata::render {
+namespace {
+
+constexpr gpu::Binding k_path_trace_bindings[] = {
+    {BINDING_TLAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+    {BINDING_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    {BINDING_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    {BINDING_PRIMITIVES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    {BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    {BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    {BINDING_ALIAS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    {BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+    {BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    {BINDING_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+};
+
+// The parts of the path tracer a frame needs, as specialization constants.
+struct Features {
+  bool thin_lens, env_nee, emitters;
+  uint32_t key() const { return uint32_t(thin_lens) | uint32_t(env_nee) << 1 | uint32_t(emitters) << 2; }
+};
+
+Features features_of(const scene::Scene& scene, const GpuScene& gs, const scene::FrameState& frame) {
+  bool env = glm::any(glm::greaterThan(scene.environment.radiance, glm::vec3(0.0f)));
+  return {frame.camera.aperture > 0.0f, env, gs.has_emitters()};
+}
+
+void require(bool ok, const std::string& message) {
+  if (!ok) throw std::invalid_argument(message);
+}
+
+}  // namespace
+
+struct Renderer::Variant {
+  Features features;
+  gpu::ComputePipeline pipeline;
+  gpu::DescriptorSet set;
+  Variant(const gpu::Context& ctx, Features f)
+      : features(f),
+        pipeline(ctx, "path_trace", k_path_trace_bindings,
+                 std::vector<gpu::SpecConstant>{{SPEC_THIN_LENS, f.thin_lens}, {SPEC_ENV_NEE, f.env_nee}, {SPEC_EMITTERS, f.emitters}},
+                 sizeof(gpu::GpuDispatchConstants)),
+        set(ctx, pipeline) {}
+};
+
+void RenderSettings::validate() const {
+  auto in = [](uint64_t v, uint64_t lo, uint64_t hi) { return v >= lo && v <= hi; };
+  require(in(width, 1, RenderLimits::max_dimension),
+          "width = " + std::to_string(width) + " is outside [1, " + std::to_string(RenderLimits::max_dimension) + "]");
+  require(in(height, 1, RenderLimits::max_dimension),
+          "height = " + std::to_string(height) + " is outside [1, " + std::to_string(RenderLimits::max_dimension) + "]");
+  require(uint64_t(width) * height <= RenderLimits::max_pixels,
+          "width * height = " + std::to_string(uint64_t(width) * height) + " exceeds max_pixels = " +
+              std::to_string(RenderLimits::max_pixels));
+  require(in(spp, 1, RenderLimits::max_spp), "spp = " + std::to_string(spp) + " is outside [1, " + std::to_string(RenderLimits::max_spp) + "]");
+  require(in(max_depth, 1, RenderLimits::max_depth),
+          "max_depth = " + std::to_string(max_depth) + " is outside [1, " + std::to_string(RenderLimits::max_depth) + "]");
+  require(in(samples_per_dispatch, 1, 4096), "samples_per_dispatch = " + std::to_string(samples_per_dispatch) + " is outside [1, 4096]");
+  auto methods = available_methods();
+  if (std::find(methods.begin(), methods.end(), method) == methods.end()) {
+    std::string list;
+    for (const auto& m : methods) list += (list.empty() ? "" : ", ") + m;
+    throw std::invalid_argument("method = '" + method + "' is not available; available: " + list);
+  }
+}
+
+std::vector<std::string> available_methods() { return {"pt"}; }
+
+Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSettings settings)
+    : ctx_(ctx), settings_(std::move(settings)) {
+  settings_.validate();
+  scene_ = std::make_unique<GpuScene>(ctx, scene);
+  size_t pixels = size_t(settings_.width) * settings_.height;
+  constants_ = gpu::Buffer(ctx, sizeof(gpu::GpuFrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "frame constants");
+  counters_ = gpu::Buffer(ctx, sizeof(uint32_t) * gpu::COUNTER_COUNT, gpu::k_storage_usage, gpu::Memory::Device, "counters");
+  accum_ = gpu::Buffer(ctx, sizeof(glm::vec4) * pixels, gpu::k_storage_usage, gpu::Memory::Device, "accumulation");
+  timer_ = std::make_unique<gpu::PassTimer>(ctx, 8);
+}
+
+Renderer::~Renderer() = default;
+
+Renderer::Variant& Renderer::variant_for(const scene::FrameState& frame) {
+  Features f = features_of(scene_->scene(), *scene_, frame);
+  auto& slot = variants_[f.key()];
+  if (!slot) {
+    slot = std::make_unique<Variant>(ctx_, f);
+    slot->set.bind_tlas(BINDING_TLAS, scene_->tlas().handle());
+    slot->set.bind_buffer(BINDING_VERTICES, scene_->vertices());
+    slot->set.bind_buffer(BINDING_INDICES, scene_->indices());
+    slot->set.bind_buffer(BINDING_PRIMITIVES, scene_->primitives());
+    slot->set.bind_buffer(BINDING_INSTANCES, scene_->instances());
+    slot->set.bind_buffer(BINDING_MATERIALS, scene_->materials());
+    slot->set.bind_buffer(BINDING_EMITTERS, scene_->emitters());
+    slot->set.bind_buffer(BINDING_ALIAS, scene_->alias());
+    slot->set.bind_buffer(BINDING_FRAME, constants_);
+    slot->set.bind_buffer(BINDING_COUNTERS, counters_);
+    slot->set.bind_buffer(BINDING_ACCUM, accum_);
+  }
+  return *slot;
+}
+
+FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_index, bool accumulate) {
+  const auto& sc = scene_->scene();
+  if (frame.transforms.size() != sc.instances.size() || frame.lods.size() != sc.instances.size())
+    throw std::invalid_argument("frame state has " + std::to_string(frame.transforms.size()) + " transforms and " +
+                                std::to_string(frame.lods.size()) + " LoD levels for " + std::to_string(sc.instances.size()) + " instances");
+  for (size_t i = 0; i < frame.lods.size(); ++i)
+    if (frame.lods[i] >= sc.instances[i].lod_meshes.size())
+      throw std::invalid_argument("lods[" + std::to_string(i) + "] = " + std::to_string(frame.lods[i]) + " but instance has " +
+                                  std::to_string(sc.instances[i].lod_meshes.size()) + " levels");
+  Variant& v = variant_for(frame);
+  if (!accumulate) accumulated_spp_ = 0;
+  uint32_t tlas_builds_before = scene_->tlas().builds(), tlas_refits_before = scene_->tlas().refits();
+
+  ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
+    timer_->reset(cmd);
+    timer_->begin(cmd, "update");
+    scene_->record_update(cmd, frame);
+    if (!accumulate) vkCmdFillBuffer(cmd, accum_.handle(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
+    gpu::compute_barrier(cmd);
+    timer_->end(cmd);
+
+    const auto& cam = frame.camera;
+    float tan_half = std::tan(0.5f * cam.yfov);
+    float aspect = float(settings_.width) / float(settings_.height);
+    gpu::GpuFrameConstants c{};
+    c.camera.forward = glm::vec4(cam.orientation * glm::vec3(0, 0, -1), 0);
+    c.camera.right = glm::vec4(cam.orientation * glm::vec3(1, 0, 0) * (tan_half * aspect), 0);
+    c.camera.up = glm::vec4(cam.orientation * glm::vec3(0, 1, 0) * tan_half, 0);
+    c.camera.lens = glm::vec4(cam.aperture, cam.focus_distance, 0, 0);
+    c.environment = glm::vec4(sc.environment.radiance, v.features.env_nee ? 1.0f : 0.0f);
+    c.width = settings_.width;
+    c.height = settings_.height;
+    c.frame_index = frame_index;
+    c.seed = settings_.seed;
+    c.samples_per_pixel = settings_.spp;
+    c.max_depth = settings_.max_depth;
+    c.emitter_count = scene_->emitter_count();
+    c.total_emitter_power = float(scene_->total_emitter_power());
+    c.env_select_prob = !v.features.env_nee ? 0.0f : (c.emitter_count == 0 ? 1.0f : 0.5f);
+    constants_.upload(&c, sizeof c);
+
+    timer_->begin(cmd, "path_trace");
+    for (uint32_t done = 0; done < settings_.spp; done += settings_.samples_per_dispatch) {
+      gpu::GpuDispatchConstants d{uint32_t(accumulated_spp_) + done, std::min(settings_.samples_per_dispatch, settings_.spp - done)};
+      gpu::dispatch_2d(cmd, v.pipeline, v.set, settings_.width, settings_.height, &d, sizeof d);
+      gpu::compute_barrier(cmd);
+    }
+    timer_->end(cmd);
+  });
+  accumulated_spp_ += settings_.spp;
+
+  FrameResult r;
+  r.accumulated_spp = accumulated_spp_;
+  auto accum = accum_.download_as<glm::vec4>(size_t(settings_.width) * settings_.height);
+  r.image.width = settings_.width;
+  r.image.height = settings_.height;
+  r.image.rgba.resize(accum.size() * 4);
+  for (size_t i = 0; i < accum.size(); ++i) {
+    float n = accum[i].a > 0.0f ? accum[i].a : 1.0f;
+    r.image.rgba[4 * i + 0] = accum[i].r / n;
+    r.image.rgba[4 * i + 1] = accum[i].g / n;
+    r.image.rgba[4 * i + 2] = accum[i].b / n;
+    r.image.rgba[4 * i + 3] = 1.0f;
+  }
+  auto counters = counters_.download_as<uint32_t>(gpu::COUNTER_COUNT);
+  FrameStats& s = r.stats;
+  s.frame = frame_index;
+  s.pass_ms = timer_->read();
+  for (const auto& p : s.pass_ms) s.gpu_ms_total += p.ms;
+  s.rays_traced = {{"primary", counters[gpu::COUNTER_RAYS_PRIMARY]},
+                   {"bounce", counters[gpu::COUNTER_RAYS_BOUNCE]},
+                   {"shadow", counters[gpu::COUNTER_RAYS_SHADOW]}};
+  s.paths = counters[gpu::COUNTER_PATHS];
+  s.nonfinite_rejected = counters[gpu::COUNTER_NONFINITE_REJECTED];
+  SceneMemory mem = scene_->memory();
+  s.memory_bytes = {{"geometry", mem.geometry},
+                    {"acceleration", mem.acceleration},
+                    {"scene_per_frame", mem.per_frame},
+                    {"image", accum_.size()},
+                    {"frame_constants_and_counters", constants_.size() + counters_.size()}};
+  s.tlas_builds = scene_->tlas().builds() - tlas_builds_before;
+  s.tlas_refits = scene_->tlas().refits() - tlas_refits_before;
+  std::string nee = std::to_string(scene_->emitter_count()) + " emissive triangles" +
+                    (v.features.env_nee ? " + environment" : "") + (v.features.thin_lens ? ", thin lens" : ", pinhole");
+  s.passes = {{"update", true, s.tlas_refits ? "TLAS refit (transforms only)" : "TLAS build"},
+              {"path_trace", true, "method pt: NEE over " + nee},
+              {"primary", false, "method pt has no reuse"},
+              {"domain_init", false, "method pt has no reuse"},
+              {"initial", false, "method pt has no reuse"},
+              {"temporal", false, "method pt has no reuse"},
+              {"spatial", false, "method pt has no reuse"},
+              {"shade", false, "path_trace writes radiance directly"}};
+  return r;
+}
+
+}  // namespace strata::render

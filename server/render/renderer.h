@@ -1,0 +1,72 @@
+#pragma once
+// The Renderer records one frame of a method's passes for one scene and reads back the image and
+// the frame statistics. Passes a method or scene does not need are not recorded and get no memory.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gpu/pipeline.h"
+#include "gpu/timer.h"
+#include "image/image.h"
+#include "render/frame_stats.h"
+#include "render/scene_gpu.h"
+
+namespace strata::render {
+
+// Limits that every caller (CLI, service) is held to; violations throw std::invalid_argument
+// naming the field and the limit.
+struct RenderLimits {
+  static constexpr uint32_t max_dimension = 8192;
+  static constexpr uint64_t max_pixels = 16ull << 20;
+  static constexpr uint32_t max_spp = 1u << 20;
+  static constexpr uint32_t max_depth = 256;
+};
+
+struct RenderSettings {
+  uint32_t width = 256;
+  uint32_t height = 256;
+  std::string method = "pt";
+  uint32_t spp = 1;                     // samples per pixel per frame
+  uint32_t max_depth = 16;              // path segments after the camera
+  uint32_t seed = 0;
+  uint32_t samples_per_dispatch = 16;   // a frame's samples are split into dispatches of this many
+  void validate() const;
+};
+
+std::vector<std::string> available_methods();
+
+struct FrameResult {
+  image::Image image;  // mean radiance per pixel over every sample accumulated so far
+  FrameStats stats;
+  uint64_t accumulated_spp = 0;
+};
+
+class Renderer {
+ public:
+  Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSettings settings);
+  ~Renderer();
+
+  // Renders `frame` (its state, and `frame_index` for the random streams). With accumulate, the
+  // samples add to those of previous calls instead of replacing them (reference rendering of
+  // one frame state); the caller keeps the frame state unchanged while accumulating.
+  FrameResult render(const scene::FrameState& frame, uint32_t frame_index, bool accumulate = false);
+
+  const RenderSettings& settings() const { return settings_; }
+  const GpuScene& gpu_scene() const { return *scene_; }
+
+ private:
+  struct Variant;
+  Variant& variant_for(const scene::FrameState& frame);
+  const gpu::Context& ctx_;
+  RenderSettings settings_;
+  std::unique_ptr<GpuScene> scene_;
+  gpu::Buffer constants_, counters_, accum_;
+  std::unique_ptr<gpu::PassTimer> timer_;
+  std::map<uint32_t, std::unique_ptr<Variant>> variants_;  // by specialization key
+  uint64_t accumulated_spp_ = 0;
+};
+
+}  // namespace strata::render

@@ -1,0 +1,121 @@
+#include "render/scene_gpu.h"
+
+#include <algorithm>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace strata::render {
+namespace {
+
+constexpr VkBufferUsageFlags k_geometry_usage =
+    gpu::k_storage_usage | VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
+
+}  // namespace
+
+GpuScene::GpuScene(const gpu::Context& ctx, const scene::Scene& scene) : ctx_(ctx), scene_(scene) {
+  scene.validate();
+  upload_geometry();
+  tlas_ = std::make_unique<gpu::Tlas>(ctx, uint32_t(scene.instances.size()));
+  instances_ = gpu::Buffer(ctx, std::max<size_t>(16, sizeof(gpu::GpuInstance) * scene.instances.size()), gpu::k_storage_usage,
+                           gpu::Memory::Host, "instances");
+  // Emitter capacity: the most emissive triangles any LoD choice can produce.
+  size_t capacity = 0;
+  for (const auto& inst : scene.instances) {
+    size_t most = 0;
+    for (uint32_t mesh : inst.lod_meshes) {
+      size_t n = 0;
+      for (const auto& p : scene.meshes[mesh].primitives)
+        if (glm::any(glm::greaterThan(scene.materials[p.material].emission, glm::vec3(0.0f)))) n += p.triangle_count();
+      most = std::max(most, n);
+    }
+    capacity += most;
+  }
+  has_emitters_ = capacity > 0;
+  emitter_capacity_ = uint32_t(capacity);
+  emitters_ = gpu::Buffer(ctx, std::max<size_t>(16, sizeof(gpu::GpuEmitter) * capacity), gpu::k_storage_usage, gpu::Memory::Host,
+                          "emitters");
+  alias_ = gpu::Buffer(ctx, std::max<size_t>(16, sizeof(gpu::GpuAliasEntry) * capacity), gpu::k_storage_usage, gpu::Memory::Host,
+                       "emitter alias table");
+}
+
+void GpuScene::upload_geometry() {
+  std::vector<gpu::GpuVertex> vertices;
+  std::vector<uint32_t> indices;
+  std::vector<gpu::GpuPrimitive> prims;
+  struct Range { uint32_t vertex_offset, vertex_count, index_offset, triangle_count; };
+  std::vector<std::vector<Range>> ranges(scene_.meshes.size());
+  for (size_t m = 0; m < scene_.meshes.size(); ++m) {
+    mesh_primitive_base_.push_back(uint32_t(prims.size()));
+    for (const auto& p : scene_.meshes[m].primitives) {
+      Range r{uint32_t(vertices.size()), uint32_t(p.positions.size()), uint32_t(indices.size()), uint32_t(p.triangle_count())};
+      for (size_t v = 0; v < p.positions.size(); ++v)
+        vertices.push_back({glm::vec4(p.positions[v], p.uvs[v].x), glm::vec4(p.normals[v], p.uvs[v].y)});
+      indices.insert(indices.end(), p.indices.begin(), p.indices.end());
+      prims.push_back({r.vertex_offset, r.index_offset, r.triangle_count, p.material});
+      ranges[m].push_back(r);
+    }
+  }
+  std::vector<gpu::GpuMaterial> mats;
+  for (const auto& m : scene_.materials) {
+    mats.push_back({glm::vec4(m.base_color, m.metallic), glm::vec4(m.emission, m.roughness), m.specular,
+                    m.double_sided ? gpu::MATERIAL_DOUBLE_SIDED : 0u, 0, 0});
+  }
+  vertices_ = gpu::make_buffer<gpu::GpuVertex>(ctx_, vertices, k_geometry_usage, gpu::Memory::Device, "vertices");
+  indices_ = gpu::make_buffer<uint32_t>(ctx_, indices, k_geometry_usage, gpu::Memory::Device, "indices");
+  primitives_ = gpu::make_buffer<gpu::GpuPrimitive>(ctx_, prims, gpu::k_storage_usage, gpu::Memory::Device, "primitives");
+  materials_ = gpu::make_buffer<gpu::GpuMaterial>(ctx_, mats, gpu::k_storage_usage, gpu::Memory::Device, "materials");
+
+  for (size_t m = 0; m < scene_.meshes.size(); ++m) {
+    std::vector<gpu::BlasTriangles> geoms;
+    for (const auto& r : ranges[m]) {
+      geoms.push_back({vertices_.address() + VkDeviceAddress(r.vertex_offset) * sizeof(gpu::GpuVertex), r.vertex_count,
+                       uint32_t(sizeof(gpu::GpuVertex)), indices_.address() + VkDeviceAddress(r.index_offset) * sizeof(uint32_t),
+                       r.triangle_count});
+    }
+    blas_.emplace_back(ctx_, geoms);
+  }
+}
+
+glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState& frame) {
+  glm::dvec3 origin(frame.camera.position);
+  std::vector<gpu::GpuInstance> records;
+  std::vector<VkAccelerationStructureInstanceKHR> tlas_instances;
+  for (size_t i = 0; i < scene_.instances.size(); ++i) {
+    uint32_t mesh = scene_.instances[i].lod_meshes[frame.lods[i]];
+    glm::mat4 m = object_to_render(frame.transforms[i], origin);
+    glm::mat3 upper(m);
+    bool mirrored = glm::determinant(upper) < 0.0f;
+    glm::mat4 normal_matrix(glm::transpose(glm::inverse(upper)));
+    records.push_back({m, normal_matrix, mesh_primitive_base_[mesh], frame.lods[i], mesh, mirrored ? 1u : 0u});
+    VkAccelerationStructureInstanceKHR vi{};
+    vi.transform = gpu::to_vk_transform(glm::value_ptr(m));
+    vi.instanceCustomIndex = uint32_t(i) & 0xFFFFFFu;  // 24 bits; LoadLimits keeps instances far below
+    vi.mask = 0xFF;
+    vi.flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR;
+    vi.accelerationStructureReference = blas_[mesh].address();
+    tlas_instances.push_back(vi);
+  }
+  instances_.upload(records.data(), records.size() * sizeof(gpu::GpuInstance));
+  // Refit keeps the tree topology: valid while the same BLASes are referenced (no LoD switch).
+  bool refit = frame.lods == last_lods_;
+  tlas_->record_build(cmd, tlas_instances, refit);
+  last_lods_ = frame.lods;
+
+  EmitterTable table = build_emitter_table(scene_, frame, origin);
+  emitter_count_ = uint32_t(table.emitters.size());
+  total_power_ = table.total_power;
+  if (emitter_count_ > emitter_capacity_) throw gpu::GpuError("emitter table overflow");
+  emitters_.upload(table.emitters.data(), table.emitters.size() * sizeof(gpu::GpuEmitter));
+  alias_.upload(table.alias.data(), table.alias.size() * sizeof(gpu::GpuAliasEntry));
+  return origin;
+}
+
+SceneMemory GpuScene::memory() const {
+  SceneMemory m;
+  m.geometry = vertices_.size() + indices_.size() + primitives_.size() + materials_.size();
+  for (const auto& b : blas_) m.acceleration += b.bytes();
+  m.acceleration += tlas_->bytes() + tlas_->scratch_bytes();
+  m.per_frame = instances_.size() + emitters_.size() + alias_.size();
+  return m;
+}
+
+}  // namespace strata::render

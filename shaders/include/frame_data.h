@@ -1,0 +1,52 @@
+// Per-frame constants and counters shared by the host and the passes.
+#ifndef STRATA_FRAME_DATA_H
+#define STRATA_FRAME_DATA_H
+#include "include/lang.h"
+
+STRATA_NAMESPACE_BEGIN
+
+// Camera in render space (its position is the origin). right/up are scaled by tan(yfov/2) and aspect.
+struct GpuCamera {
+  vec4 forward;        // xyz unit view direction
+  vec4 right;          // xyz = unit right * tan_half * aspect
+  vec4 up;             // xyz = unit up * tan_half
+  vec4 lens;           // x aperture radius, y focus distance
+};
+
+struct GpuFrameConstants {
+  GpuCamera camera;
+  vec4 environment;          // rgb constant environment radiance, a = 1 if it is sampled by NEE
+  uint width;
+  uint height;
+  uint frame_index;
+  uint seed;
+  uint samples_per_pixel;    // this frame's total; dispatches add GpuDispatchConstants::sample_count each
+  uint pad2;
+  uint max_depth;            // path vertices after the camera
+  uint emitter_count;
+  float total_emitter_power;
+  float env_select_prob;     // probability that NEE picks the environment instead of an emitter
+  uint pad0;
+  uint pad1;
+};
+
+// Push constants of a dispatch: a frame's samples may be split over several dispatches.
+struct GpuDispatchConstants {
+  uint sample_base;   // index of the first sample in this dispatch (decorrelates the RNG streams)
+  uint sample_count;
+};
+
+// Counter slots in the counters buffer (uint each), reduced into the frame statistics.
+CONST_DEF uint COUNTER_RAYS_PRIMARY = 0u;
+CONST_DEF uint COUNTER_RAYS_BOUNCE = 1u;
+CONST_DEF uint COUNTER_RAYS_SHADOW = 2u;
+CONST_DEF uint COUNTER_NONFINITE_REJECTED = 3u;
+CONST_DEF uint COUNTER_PATHS = 4u;
+CONST_DEF uint COUNTER_COUNT = 8u;
+
+STRATA_NAMESPACE_END
+
+#ifdef __cplusplus
+static_assert(sizeof(strata::gpu::GpuFrameConstants) == 128);
+#endif
+#endif

@@ -1,0 +1,98 @@
+// The bridge between the passes (and the ReSTIR library) and the scene: tracing, hit loading,
+// materials and emitter records. Passes include this; nothing else touches the scene bindings.
+#ifndef STRATA_SCENE_BRIDGE_GLSL
+#define STRATA_SCENE_BRIDGE_GLSL
+#extension GL_EXT_ray_query : require
+
+#include "include/bindings.h"
+#include "include/scene_data.h"
+#include "sampling/ray_offset.h"
+
+layout(set = 0, binding = BINDING_TLAS) uniform accelerationStructureEXT u_tlas;
+layout(set = 0, binding = BINDING_VERTICES, std430) readonly buffer Vertices { GpuVertex b_vertices[]; };
+layout(set = 0, binding = BINDING_INDICES, std430) readonly buffer Indices { uint b_indices[]; };
+layout(set = 0, binding = BINDING_PRIMITIVES, std430) readonly buffer Primitives { GpuPrimitive b_primitives[]; };
+layout(set = 0, binding = BINDING_INSTANCES, std430) readonly buffer Instances { GpuInstance b_instances[]; };
+layout(set = 0, binding = BINDING_MATERIALS, std430) readonly buffer Materials { GpuMaterial b_materials[]; };
+
+CONST_DEF uint INSTANCE_FLAG_MIRRORED = 1u;  // negative determinant: front faces wind clockwise
+
+// What a ray query reports: enough to reload the hit later (a path sample stores exactly this).
+struct RayHit {
+  float t;
+  uint instance;
+  uint geometry;    // primitive of the instance's mesh
+  uint triangle;
+  vec2 bary;        // barycentrics of vertices 1 and 2
+};
+
+struct SurfaceHit {
+  vec3 position;        // render space
+  vec3 geo_normal;      // unit, front face (counter-clockwise winding in world)
+  vec3 shading_normal;  // unit, interpolated, on the geometric normal's side
+  vec2 uv;
+  float area;           // render-space triangle area
+  uint material;
+};
+
+bool trace_closest(vec3 origin, vec3 dir, float t_max, out RayHit hit) {
+  rayQueryEXT rq;
+  rayQueryInitializeEXT(rq, u_tlas, gl_RayFlagsOpaqueEXT, 0xFF, origin, 0.0, dir, t_max);
+  while (rayQueryProceedEXT(rq)) {
+  }
+  hit.t = 0.0;
+  hit.instance = 0u;
+  hit.geometry = 0u;
+  hit.triangle = 0u;
+  hit.bary = vec2(0.0);
+  if (rayQueryGetIntersectionTypeEXT(rq, true) != gl_RayQueryCommittedIntersectionTriangleEXT) return false;
+  hit.t = rayQueryGetIntersectionTEXT(rq, true);
+  hit.instance = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(rq, true));
+  hit.geometry = uint(rayQueryGetIntersectionGeometryIndexEXT(rq, true));
+  hit.triangle = uint(rayQueryGetIntersectionPrimitiveIndexEXT(rq, true));
+  hit.bary = rayQueryGetIntersectionBarycentricsEXT(rq, true);
+  return true;
+}
+
+// True when nothing blocks the segment origin -> origin + dir * t_max.
+bool trace_visible(vec3 origin, vec3 dir, float t_max) {
+  rayQueryEXT rq;
+  rayQueryInitializeEXT(rq, u_tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT, 0xFF,
+                        origin, 0.0, dir, t_max);
+  while (rayQueryProceedEXT(rq)) {
+  }
+  return rayQueryGetIntersectionTypeEXT(rq, true) == gl_RayQueryCommittedIntersectionNoneEXT;
+}
+
+SurfaceHit load_hit(RayHit h) {
+  GpuInstance inst = b_instances[h.instance];
+  GpuPrimitive prim = b_primitives[inst.primitive_base + h.geometry];
+  uint base = prim.index_offset + 3u * h.triangle;
+  GpuVertex v0 = b_vertices[prim.vertex_offset + b_indices[base]];
+  GpuVertex v1 = b_vertices[prim.vertex_offset + b_indices[base + 1u]];
+  GpuVertex v2 = b_vertices[prim.vertex_offset + b_indices[base + 2u]];
+  vec3 p0 = (inst.object_to_render * vec4(v0.position_u.xyz, 1.0)).xyz;
+  vec3 p1 = (inst.object_to_render * vec4(v1.position_u.xyz, 1.0)).xyz;
+  vec3 p2 = (inst.object_to_render * vec4(v2.position_u.xyz, 1.0)).xyz;
+  float b0 = 1.0 - h.bary.x - h.bary.y;
+
+  SurfaceHit s;
+  // Interpolating the vertices is more precise than origin + t * dir (Waechter & Binder).
+  s.position = b0 * p0 + h.bary.x * p1 + h.bary.y * p2;
+  vec3 c = cross(p1 - p0, p2 - p0);
+  float len = length(c);
+  s.area = 0.5 * len;
+  s.geo_normal = len > 0.0 ? c / len : vec3(0.0, 0.0, 1.0);
+  if ((inst.flags & INSTANCE_FLAG_MIRRORED) != 0u) s.geo_normal = -s.geo_normal;
+  vec3 n_obj = b0 * v0.normal_v.xyz + h.bary.x * v1.normal_v.xyz + h.bary.y * v2.normal_v.xyz;
+  vec3 n = (inst.normal_to_render * vec4(n_obj, 0.0)).xyz;
+  float nl = length(n);
+  s.shading_normal = nl > 0.0 && !isnan(nl) ? n / nl : s.geo_normal;
+  if (dot(s.shading_normal, s.geo_normal) < 0.0) s.shading_normal = -s.shading_normal;
+  s.uv = b0 * vec2(v0.position_u.w, v0.normal_v.w) + h.bary.x * vec2(v1.position_u.w, v1.normal_v.w) +
+         h.bary.y * vec2(v2.position_u.w, v2.normal_v.w);
+  s.material = prim.material;
+  return s;
+}
+
+#endif

@@ -1,0 +1,72 @@
+// Scene data as the device sees it; one definition for GLSL (std430) and C++.
+// All positions are in render space: world space shifted so that the camera is at the origin
+// (DESIGN.md section 6: positions are camera-relative where precision matters).
+#ifndef STRATA_SCENE_DATA_H
+#define STRATA_SCENE_DATA_H
+#include "include/lang.h"
+
+STRATA_NAMESPACE_BEGIN
+
+// Position with u in w, normal with v in w: 32 bytes, object space.
+struct GpuVertex {
+  vec4 position_u;
+  vec4 normal_v;
+};
+
+// One glTF primitive of one mesh LoD: triangles [index_offset, index_offset + 3 * triangle_count).
+struct GpuPrimitive {
+  uint vertex_offset;
+  uint index_offset;
+  uint triangle_count;
+  uint material;
+};
+
+// One instance in the TLAS (instance custom index = its position in the instance array).
+// A ray-query hit gives geometry index g: the primitive is primitives[primitive_base + g].
+struct GpuInstance {
+  mat4 object_to_render;
+  mat4 normal_to_render;  // inverse transpose of the upper 3x3, padded
+  uint primitive_base;
+  uint lod;
+  uint mesh;
+  uint flags;
+};
+
+CONST_DEF uint MATERIAL_DOUBLE_SIDED = 1u;
+
+struct GpuMaterial {
+  vec4 base_color_metallic;    // rgb base colour, a metallic
+  vec4 emission_roughness;     // rgb emitted radiance, a perceptual roughness
+  float specular;              // KHR_materials_specular factor: dielectric F0 = 0.04 * specular
+  uint flags;
+  uint pad0;
+  uint pad1;
+};
+
+// A world-space emissive triangle for next-event estimation, in render space.
+struct GpuEmitter {
+  vec4 p0_area;       // p0, triangle area
+  vec4 p1_pmf;        // p1, probability of choosing this emitter (power / total power)
+  vec4 p2_flags;      // p2, flags as float bits (MATERIAL_DOUBLE_SIDED)
+  vec4 emission;      // rgb radiance
+};
+
+// Walker/Vose alias table entry over emitters.
+struct GpuAliasEntry {
+  float threshold;
+  uint alias;
+  uint pad0;
+  uint pad1;
+};
+
+STRATA_NAMESPACE_END
+
+#ifdef __cplusplus
+static_assert(sizeof(strata::gpu::GpuVertex) == 32);
+static_assert(sizeof(strata::gpu::GpuPrimitive) == 16);
+static_assert(sizeof(strata::gpu::GpuInstance) == 144);
+static_assert(sizeof(strata::gpu::GpuMaterial) == 48);
+static_assert(sizeof(strata::gpu::GpuEmitter) == 64);
+static_assert(sizeof(strata::gpu::GpuAliasEntry) == 16);
+#endif
+#endif

@@ -1,0 +1,159 @@
+#version 460
+// Pass `path_trace`: the reference unidirectional path tracer (method `pt`). Box-filtered subpixel
+// jitter, optional thin lens, next-event estimation to emitters and the environment combined with
+// BSDF sampling by the power heuristic, Russian roulette. Adds `sample_count` samples per
+// pixel to the accumulation buffer (rgb sum, a = sample count).
+#extension GL_EXT_ray_query : require
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+#include "include/bindings.h"
+#include "include/frame_data.h"
+#include "include/scene_bridge.glsl"
+#include "material/bsdf.h"
+#include "sampling/light_sampling.glsl"
+#include "sampling/mis.h"
+#include "sampling/rng.h"
+#include "sampling/warp.h"
+
+layout(constant_id = SPEC_THIN_LENS) const bool k_thin_lens = false;
+layout(constant_id = SPEC_ENV_NEE) const bool k_env_nee = false;
+layout(constant_id = SPEC_EMITTERS) const bool k_emitters = true;
+
+layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
+layout(push_constant) uniform Dispatch { GpuDispatchConstants u_dispatch; };
+layout(set = 0, binding = BINDING_COUNTERS, std430) buffer Counters { uint b_counters[]; };
+layout(set = 0, binding = BINDING_ACCUM, std430) buffer Accum { vec4 b_accum[]; };
+
+const float RR_START_DEPTH = 3.0;
+const float RR_MAX_SURVIVAL = 0.95;
+
+uint g_rays_primary = 0u;
+uint g_rays_bounce = 0u;
+uint g_rays_shadow = 0u;
+
+void camera_ray(vec2 pixel, inout Rng rng, out vec3 origin, out vec3 dir) {
+  GpuCamera cam = u_frame.camera;
+  vec2 jitter = rng_next_float2(rng);  // box filter over the pixel
+  vec2 ndc = vec2((pixel.x + jitter.x) / float(u_frame.width) * 2.0 - 1.0,
+                  1.0 - (pixel.y + jitter.y) / float(u_frame.height) * 2.0);
+  vec3 d = cam.forward.xyz + ndc.x * cam.right.xyz + ndc.y * cam.up.xyz;
+  origin = vec3(0.0);
+  if (k_thin_lens && cam.lens.x > 0.0) {
+    // Thin lens: the pinhole ray's point on the focus plane stays sharp (Pharr et al., PBRT 5.2.3).
+    vec3 focus_point = d * cam.lens.y;
+    vec2 disk = sample_concentric_disk(rng_next_float2(rng)) * cam.lens.x;
+    origin = disk.x * normalize(cam.right.xyz) + disk.y * normalize(cam.up.xyz);
+    dir = normalize(focus_point - origin);
+  } else {
+    dir = normalize(d);
+  }
+}
+
+vec3 trace_path(vec2 pixel, inout Rng rng) {
+  vec3 origin;
+  vec3 dir;
+  camera_ray(pixel, rng, origin, dir);
+  vec3 radiance = vec3(0.0);
+  vec3 throughput = vec3(1.0);
+  float prev_bsdf_pdf = 0.0;  // 0 marks the camera vertex: emission seen directly is not MIS-weighted
+  g_rays_primary++;
+
+  for (uint depth = 1u; depth <= u_frame.max_depth; ++depth) {
+    RayHit rh;
+    if (!trace_closest(origin, dir, 1e30, rh)) {
+      float w = 1.0;
+      if (k_env_nee && prev_bsdf_pdf > 0.0) w = mis_power(prev_bsdf_pdf, environment_pdf(u_frame));
+      radiance += throughput * u_frame.environment.rgb * w;
+      break;
+    }
+    SurfaceHit s = load_hit(rh);
+    GpuMaterial m = b_materials[s.material];
+    bool double_sided = (m.flags & MATERIAL_DOUBLE_SIDED) != 0u;
+    float cos_hit = dot(s.geo_normal, -dir);
+    bool front = cos_hit > 0.0;
+
+    vec3 emission = m.emission_roughness.rgb;
+    if (any(greaterThan(emission, vec3(0.0))) && (front || double_sided)) {
+      float w = 1.0;
+      if (k_emitters && prev_bsdf_pdf > 0.0) {
+        float pmf = emitter_select_pmf(emission, s.area, double_sided, u_frame);
+        w = mis_power(prev_bsdf_pdf, emitter_pdf_solid_angle(pmf, s.area, rh.t, cos_hit));
+      }
+      radiance += throughput * emission * w;
+    }
+    if (depth == u_frame.max_depth) break;
+
+    // Shading frame on the side the ray arrived from (surfaces are two-sided for scattering).
+    vec3 ng = front ? s.geo_normal : -s.geo_normal;
+    vec3 ns = front ? s.shading_normal : -s.shading_normal;
+    vec3 t;
+    vec3 b;
+    make_onb(ns, t, b);
+    vec3 wo = to_local(-dir, t, b, ns);
+    BsdfParams bsdf = make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular);
+    vec3 x = offset_ray_origin(s.position, ng);
+
+    // Next-event estimation, MIS-weighted against BSDF sampling.
+    if (k_emitters || k_env_nee) {
+      LightSample ls;
+      vec3 ul = vec3(rng_next_float2(rng), rng_next_float(rng));
+      if (sample_light(s.position, ul, u_frame, ls) && dot(ls.direction, ng) > 0.0) {
+        vec3 wi = to_local(ls.direction, t, b, ns);
+        vec3 f = bsdf_eval_cos(bsdf, wo, wi);
+        if (any(greaterThan(f, vec3(0.0)))) {
+          float t_max = isinf(ls.distance) ? 1e30 : ls.distance * (1.0 - SHADOW_RAY_SHORTEN);
+          g_rays_shadow++;
+          if (trace_visible(x, ls.direction, t_max)) {
+            float w = mis_power(ls.pdf, bsdf_pdf(bsdf, wo, wi));
+            radiance += throughput * f * ls.radiance * (w / ls.pdf);
+          }
+        }
+      }
+    }
+
+    vec3 wi_local;
+    vec3 weight;
+    float pdf;
+    vec3 ub = vec3(rng_next_float2(rng), rng_next_float(rng));
+    if (!bsdf_sample(bsdf, wo, ub, wi_local, weight, pdf)) break;
+    dir = to_world(wi_local, t, b, ns);
+    if (dot(dir, ng) <= 0.0) break;  // shading normal sent the ray through the surface
+    throughput *= weight;
+    prev_bsdf_pdf = pdf;
+    origin = x;
+
+    if (float(depth) >= RR_START_DEPTH) {
+      float survive = min(max(throughput.r, max(throughput.g, throughput.b)), RR_MAX_SURVIVAL);
+      if (rng_next_float(rng) >= survive) break;
+      throughput /= survive;
+    }
+    g_rays_bounce++;
+  }
+  return radiance;
+}
+
+void main() {
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
+  uint index = pixel.y * u_frame.width + pixel.x;
+  vec3 sum = vec3(0.0);
+  uint rejected = 0u;
+  for (uint s = 0u; s < u_dispatch.sample_count; ++s) {
+    Rng rng = rng_init(index, u_dispatch.sample_base + s, u_frame.frame_index, u_frame.seed);
+    vec3 l = trace_path(vec2(pixel), rng);
+    // DESIGN.md section 6: a non-finite or negative sample never reaches a pixel; it is counted.
+    if (any(isnan(l)) || any(isinf(l)) || any(lessThan(l, vec3(0.0)))) {
+      rejected++;
+      continue;
+    }
+    sum += l;
+  }
+  b_accum[index] += vec4(sum, float(u_dispatch.sample_count));
+  atomicAdd(b_counters[COUNTER_RAYS_PRIMARY], g_rays_primary);
+  atomicAdd(b_counters[COUNTER_RAYS_BOUNCE], g_rays_bounce);
+  atomicAdd(b_counters[COUNTER_RAYS_SHADOW], g_rays_shadow);
+  atomicAdd(b_counters[COUNTER_PATHS], u_dispatch.sample_count);
+  if (rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], rejected);
+}

@@ -1,0 +1,28 @@
+// Robust ray origins: Waechter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection",
+// Ray Tracing Gems (2019), ch. 6. The offset is a few ulps along the normal in integer space, so it
+// scales with the magnitude of the position (geometry far from the origin stays correct).
+#ifndef STRATA_RAY_OFFSET_H
+#define STRATA_RAY_OFFSET_H
+#include "include/lang.h"
+
+STRATA_NAMESPACE_BEGIN
+
+CONST_DEF float RAY_OFFSET_ORIGIN = 1.0f / 32.0f;
+CONST_DEF float RAY_OFFSET_FLOAT_SCALE = 1.0f / 65536.0f;
+CONST_DEF float RAY_OFFSET_INT_SCALE = 256.0f;
+// Visibility rays stop this fraction short of their target (DESIGN.md section 6).
+CONST_DEF float SHADOW_RAY_SHORTEN = 1e-4f;
+
+INLINE float offset_component(float p, float n) {
+  int of_i = int(RAY_OFFSET_INT_SCALE * n);
+  float p_i = intBitsToFloat(floatBitsToInt(p) + (p < 0.0f ? -of_i : of_i));
+  return abs(p) < RAY_OFFSET_ORIGIN ? p + RAY_OFFSET_FLOAT_SCALE * n : p_i;
+}
+
+// p: hit position, n: geometric normal on the side the new ray leaves from.
+INLINE vec3 offset_ray_origin(vec3 p, vec3 n) {
+  return vec3(offset_component(p.x, n.x), offset_component(p.y, n.y), offset_component(p.z, n.z));
+}
+
+STRATA_NAMESPACE_END
+#endif

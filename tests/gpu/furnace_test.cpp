@@ -1,0 +1,61 @@
+// White furnace: inside a closed box whose walls all emit Le and reflect with Lambert albedo a,
+// the radiance is Le / (1 - a) everywhere (the Neumann series of the rendering equation). The path
+// tracer's next-event estimation, light PDF and MIS weights all contribute, so an error in any of
+// them moves the mean away from the analytic value.
+#include <cmath>
+
+#include "gpu/gpu_context.h"
+#include "render/renderer.h"
+#include "support/test_scenes.h"
+
+namespace strata::test {
+namespace {
+
+struct ImageMoments {
+  double mean = 0.0;
+  double std_error = 0.0;  // of the mean over pixels (pixels are independent estimates)
+};
+
+ImageMoments channel_moments(const image::Image& img, int channel) {
+  size_t n = size_t(img.width) * img.height;
+  double sum = 0.0, sum2 = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    double v = img.rgba[4 * i + size_t(channel)];
+    sum += v;
+    sum2 += v * v;
+  }
+  double mean = sum / double(n);
+  double var = std::max(0.0, sum2 / double(n) - mean * mean);
+  return {mean, std::sqrt(var / double(n))};
+}
+
+class Furnace : public GpuTest {};
+
+TEST_F(Furnace, RadianceIsEmissionOverOneMinusAlbedo) {
+  for (float albedo : {0.3f, 0.7f}) {
+    scene::Scene s = furnace_box(albedo, 1.0f);
+    render::RenderSettings rs;
+    rs.width = 32;
+    rs.height = 32;
+    rs.spp = 64;
+    rs.max_depth = 128;
+    rs.seed = 7;
+    render::Renderer r(gpu_context(), s, rs);
+    auto result = r.render(s.frame_state(0), 0);
+    double expected = 1.0 / (1.0 - albedo);
+    for (int c = 0; c < 3; ++c) {
+      ImageMoments m = channel_moments(result.image, c);
+      // Pixels are independent Monte Carlo estimates, so the image mean is normal to good accuracy
+      // with the measured standard error. 5 sigma keeps false failures below 1e-6 per check; the
+      // 0.2% floor covers float accumulation and the truncation at max_depth (albedo^128 ~ 0).
+      double tolerance = 5.0 * m.std_error + 2e-3 * expected;
+      EXPECT_NEAR(m.mean, expected, tolerance) << "albedo " << albedo << " channel " << c << " se " << m.std_error;
+      EXPECT_LT(m.std_error, 0.05 * expected) << "estimate too noisy to be a meaningful test";
+    }
+    EXPECT_EQ(result.stats.nonfinite_rejected, 0u);
+    EXPECT_EQ(result.stats.paths, 32u * 32u * 64u);
+  }
+}
+
+}  // namespace
+}  // namespace strata::test

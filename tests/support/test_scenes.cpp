@@ -1,0 +1,56 @@
+#include "support/test_scenes.h"
+
+namespace strata::test {
+namespace {
+
+// Quad with corners c0..c3 in counter-clockwise order seen from the side `n` points to.
+scene::Primitive quad(glm::vec3 c0, glm::vec3 c1, glm::vec3 c2, glm::vec3 c3, glm::vec3 n, uint32_t material) {
+  scene::Primitive p;
+  p.positions = {c0, c1, c2, c3};
+  p.normals = {n, n, n, n};
+  p.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  p.indices = {0, 1, 2, 0, 2, 3};
+  p.material = material;
+  return p;
+}
+
+}  // namespace
+
+scene::Mesh quad_mesh(float h, float z0, uint32_t material) {
+  scene::Mesh m;
+  m.name = "quad";
+  m.primitives.push_back(quad({-h, -h, z0}, {h, -h, z0}, {h, h, z0}, {-h, h, z0}, {0, 0, 1}, material));
+  return m;
+}
+
+scene::Scene furnace_box(float albedo, float emission, float h) {
+  scene::Scene s;
+  s.name = "furnace";
+  scene::Material m;
+  m.name = "furnace wall";
+  m.base_color = glm::vec3(albedo);
+  m.metallic = 0.0f;
+  m.roughness = 1.0f;
+  m.specular = 0.0f;
+  m.emission = glm::vec3(emission);
+  s.materials.push_back(m);
+  scene::Mesh box;
+  box.name = "box";
+  // Each face wound counter-clockwise as seen from inside (its inward normal).
+  box.primitives.push_back(quad({-h, -h, -h}, {h, -h, -h}, {h, h, -h}, {-h, h, -h}, {0, 0, 1}, 0));   // z = -h, faces +z
+  box.primitives.push_back(quad({-h, -h, h}, {-h, h, h}, {h, h, h}, {h, -h, h}, {0, 0, -1}, 0));     // z = +h, faces -z
+  box.primitives.push_back(quad({-h, -h, -h}, {-h, h, -h}, {-h, h, h}, {-h, -h, h}, {1, 0, 0}, 0));   // x = -h, faces +x
+  box.primitives.push_back(quad({h, -h, -h}, {h, -h, h}, {h, h, h}, {h, h, -h}, {-1, 0, 0}, 0));     // x = +h, faces -x
+  box.primitives.push_back(quad({-h, -h, -h}, {-h, -h, h}, {h, -h, h}, {h, -h, -h}, {0, 1, 0}, 0));   // y = -h, faces +y
+  box.primitives.push_back(quad({-h, h, -h}, {h, h, -h}, {h, h, h}, {-h, h, h}, {0, -1, 0}, 0));     // y = +h, faces -y
+  s.meshes.push_back(box);
+  scene::Instance inst;
+  inst.name = "box";
+  inst.lod_meshes = {0};
+  s.instances.push_back(inst);
+  s.camera.position = glm::vec3(0.0f);
+  s.camera.yfov = 1.2f;
+  return s;
+}
+
+}  // namespace strata::test

@@ -1,0 +1,15 @@
+#pragma once
+// Small analytic scenes built in code for tests.
+#include "scene/scene.h"
+
+namespace strata::test {
+
+// A closed axis-aligned box [-h, h]^3 seen from inside: 6 quads facing inward, Lambert albedo
+// `albedo` (no specular lobe), each emitting `emission` from its inward face. The camera sits at the
+// centre looking down -Z. Radiance everywhere is emission / (1 - albedo) (white furnace).
+scene::Scene furnace_box(float albedo, float emission, float half_size = 1.0f);
+
+// One quad of size 2h x 2h in the plane z = z0, facing +Z, with one material.
+scene::Mesh quad_mesh(float half, float z0, uint32_t material);
+
+}  // namespace strata::test
