@@ -10,5 +10,6 @@ using Runner = std::function<int()>;
 Runner add_render_command(CLI::App& app);
 Runner add_export_scene_command(CLI::App& app);
 Runner add_list_scenes_command(CLI::App& app);
+Runner add_bench_command(CLI::App& app);
 
 }  // namespace strata::cli

@@ -34,6 +34,9 @@ void write_exr(const std::filesystem::path& path, const Image& img, std::span<co
 // Reads R, G, B (and A, else 1) of any EXR; throws ImageError naming the file on failure.
 Image read_exr(const std::filesystem::path& path);
 Image decode_exr(std::span<const uint8_t> bytes);
+// Every channel other than R, G, B, A (the AOVs written as `extra`) as floats, sorted by name
+// (EXR keeps its channel list sorted).
+std::vector<Channel> decode_exr_extra_channels(std::span<const uint8_t> bytes);
 
 // 8-bit sRGB PNG preview: exposure (stops) then the ACES filmic curve (Narkowicz fit), then sRGB OETF.
 // Non-finite pixels are written magenta so that they cannot go unnoticed.

@@ -1,9 +1,9 @@
 #include "render/renderer.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include "include/bindings.h"
+#include "render/frame_constants.h"
 
 namespace strata::render {
 namespace {
@@ -129,24 +129,9 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
     gpu::compute_barrier(cmd);
     timer_->end(cmd);
 
-    const auto& cam = frame.camera;
-    float tan_half = std::tan(0.5f * cam.yfov);
-    float aspect = float(settings_.width) / float(settings_.height);
-    gpu::GpuFrameConstants c{};
-    c.camera.forward = glm::vec4(cam.orientation * glm::vec3(0, 0, -1), 0);
-    c.camera.right = glm::vec4(cam.orientation * glm::vec3(1, 0, 0) * (tan_half * aspect), 0);
-    c.camera.up = glm::vec4(cam.orientation * glm::vec3(0, 1, 0) * tan_half, 0);
-    c.camera.lens = glm::vec4(cam.aperture, cam.focus_distance, 0, 0);
-    c.environment = glm::vec4(sc.environment.radiance, v.features.env_nee ? 1.0f : 0.0f);
-    c.width = settings_.width;
-    c.height = settings_.height;
-    c.frame_index = frame_index;
-    c.seed = settings_.seed;
-    c.samples_per_pixel = settings_.spp;
-    c.max_depth = settings_.max_depth;
-    c.emitter_count = scene_->emitter_count();
-    c.total_emitter_power = float(scene_->total_emitter_power());
-    c.env_select_prob = !v.features.env_nee ? 0.0f : (c.emitter_count == 0 ? 1.0f : 0.5f);
+    FrameSetup setup{settings_.width, settings_.height, frame_index, settings_.seed, settings_.spp, settings_.max_depth,
+                     v.features.env_nee};
+    gpu::GpuFrameConstants c = make_frame_constants(frame, sc.environment, *scene_, setup);
     constants_.upload(&c, sizeof c);
 
     timer_->begin(cmd, "path_trace");

@@ -1,0 +1,97 @@
+// Tonemapped 8-bit PNG previews through libpng's simplified API, which reports errors in the
+// png_image struct instead of longjmp-ing through C++ frames.
+#include <climits>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include <png.h>
+
+#include "image/image.h"
+#include "image/image_util.h"
+#include "image/tonemap.h"
+
+namespace strata::image {
+namespace {
+
+// Frees libpng's read state on every path out of decode_png, including exceptions.
+struct PngImageGuard {
+  png_image& image;
+  ~PngImageGuard() { png_image_free(&image); }
+};
+
+std::string png_message(const png_image& image) { return image.message; }
+
+}  // namespace
+
+std::vector<uint8_t> encode_png_preview(const Image& img, float exposure_stops) {
+  detail::check_image(img, "encode_png_preview");
+  if (!std::isfinite(exposure_stops)) {
+    throw ImageError("encode_png_preview: exposure of " + std::to_string(exposure_stops) +
+                     " stops is not finite");
+  }
+  // libpng takes the row stride as a signed 32-bit value.
+  if (img.width > INT_MAX / 3 || img.height > INT_MAX) {
+    throw ImageError("encode_png_preview: image of " + std::to_string(img.width) + "x" +
+                     std::to_string(img.height) + " exceeds the PNG writer's limits");
+  }
+  const float scale = std::exp2(exposure_stops);
+  const size_t pixels = size_t(img.width) * img.height;
+  std::vector<uint8_t> rgb(3 * pixels);
+  for (size_t i = 0; i < pixels; ++i) {
+    const float* p = &img.rgba[4 * i];
+    uint8_t* out = &rgb[3 * i];
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+      out[0] = 255;
+      out[1] = 0;
+      out[2] = 255;
+      continue;
+    }
+    for (int c = 0; c < 3; ++c) out[c] = tonemap_to_srgb8(p[c], scale);
+  }
+
+  png_image image;
+  std::memset(&image, 0, sizeof(image));
+  image.version = PNG_IMAGE_VERSION;
+  image.width = img.width;
+  image.height = img.height;
+  image.format = PNG_FORMAT_RGB;
+  const png_int_32 stride = static_cast<png_int_32>(3 * img.width);
+  // First call sizes the output, second call writes it.
+  png_alloc_size_t size = 0;
+  if (!png_image_write_to_memory(&image, nullptr, &size, 0, rgb.data(), stride, nullptr)) {
+    throw ImageError("encode_png_preview: libpng failed: " + png_message(image));
+  }
+  std::vector<uint8_t> bytes(size);
+  if (!png_image_write_to_memory(&image, bytes.data(), &size, 0, rgb.data(), stride, nullptr)) {
+    throw ImageError("encode_png_preview: libpng failed: " + png_message(image));
+  }
+  bytes.resize(size);
+  return bytes;
+}
+
+void write_png_preview(const std::filesystem::path& path, const Image& img, float exposure_stops) {
+  detail::write_file_bytes(path, encode_png_preview(img, exposure_stops), "write_png_preview");
+}
+
+Image decode_png(std::span<const uint8_t> bytes) {
+  png_image image;
+  std::memset(&image, 0, sizeof(image));
+  image.version = PNG_IMAGE_VERSION;
+  PngImageGuard guard{image};
+  if (!png_image_begin_read_from_memory(&image, bytes.data(), bytes.size())) {
+    throw ImageError("decode_png: " + png_message(image));
+  }
+  if (image.width == 0 || image.height == 0) throw ImageError("decode_png: zero-size image");
+  // Whatever the stored layout, ask libpng for 8-bit RGBA (opaque alpha when the file has none).
+  image.format = PNG_FORMAT_RGBA;
+  std::vector<uint8_t> rgba8(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, rgba8.data(), 0, nullptr)) {
+    throw ImageError("decode_png: " + png_message(image));
+  }
+  Image img{image.width, image.height, std::vector<float>(rgba8.size())};
+  for (size_t i = 0; i < rgba8.size(); ++i) img.rgba[i] = float(rgba8[i]) / 255.0f;
+  return img;
+}
+
+}  // namespace strata::image

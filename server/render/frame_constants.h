@@ -1,0 +1,23 @@
+#pragma once
+// GpuFrameConstants for a frame: the camera in render space and the light-sampling setup.
+#include "include/frame_data.h"
+#include "render/scene_gpu.h"
+#include "scene/scene.h"
+
+namespace strata::render {
+
+struct FrameSetup {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  uint32_t frame_index = 0;
+  uint32_t seed = 0;
+  uint32_t spp = 1;
+  uint32_t max_depth = 16;
+  bool env_nee = false;  // the environment is sampled by next-event estimation
+};
+
+// Call after GpuScene::record_update for the same frame (it uses that frame's emitter table).
+gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, const scene::Environment& env,
+                                            const GpuScene& scene, const FrameSetup& setup);
+
+}  // namespace strata::render

@@ -1,0 +1,66 @@
+#include "render/ray_benchmark.h"
+
+#include "include/bindings.h"
+#include "render/frame_constants.h"
+
+namespace strata::render {
+namespace {
+
+constexpr gpu::Binding k_bindings[] = {
+    {BINDING_TLAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+    {BINDING_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    {BINDING_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    {BINDING_PRIMITIVES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    {BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    {BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    {BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+    {BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+};
+
+}  // namespace
+
+RayBenchmark::RayBenchmark(const gpu::Context& ctx, const scene::Scene& scene, uint32_t width, uint32_t height)
+    : ctx_(ctx), scene_(scene), width_(width), height_(height) {
+  gpu_scene_ = std::make_unique<GpuScene>(ctx, scene);
+  constants_ = gpu::Buffer(ctx, sizeof(gpu::GpuFrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "frame constants");
+  counters_ = gpu::Buffer(ctx, sizeof(uint32_t) * gpu::COUNTER_COUNT, gpu::k_storage_usage, gpu::Memory::Device, "counters");
+  pipeline_ = std::make_unique<gpu::ComputePipeline>(ctx, "ray_throughput", k_bindings, std::span<const gpu::SpecConstant>{},
+                                                     uint32_t(sizeof(gpu::GpuDispatchConstants)));
+  set_ = std::make_unique<gpu::DescriptorSet>(ctx, *pipeline_);
+  set_->bind_tlas(BINDING_TLAS, gpu_scene_->tlas().handle());
+  set_->bind_buffer(BINDING_VERTICES, gpu_scene_->vertices());
+  set_->bind_buffer(BINDING_INDICES, gpu_scene_->indices());
+  set_->bind_buffer(BINDING_PRIMITIVES, gpu_scene_->primitives());
+  set_->bind_buffer(BINDING_INSTANCES, gpu_scene_->instances());
+  set_->bind_buffer(BINDING_MATERIALS, gpu_scene_->materials());
+  set_->bind_buffer(BINDING_FRAME, constants_);
+  set_->bind_buffer(BINDING_COUNTERS, counters_);
+  timer_ = std::make_unique<gpu::PassTimer>(ctx, 2);
+}
+
+RayBenchmark::~RayBenchmark() = default;
+
+RayThroughput RayBenchmark::run(const scene::FrameState& frame, uint32_t rays_per_pixel, uint32_t seed) {
+  ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
+    timer_->reset(cmd);
+    gpu_scene_->record_update(cmd, frame);
+    vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
+    gpu::compute_barrier(cmd);
+    FrameSetup setup{width_, height_, 0, seed, rays_per_pixel, 1, false};
+    gpu::GpuFrameConstants c = make_frame_constants(frame, scene_.environment, *gpu_scene_, setup);
+    constants_.upload(&c, sizeof c);
+    gpu::GpuDispatchConstants d{0, rays_per_pixel};
+    timer_->begin(cmd, "ray_throughput");
+    gpu::dispatch_2d(cmd, *pipeline_, *set_, width_, height_, &d, sizeof d);
+    timer_->end(cmd);
+  });
+  auto counters = counters_.download_as<uint32_t>(gpu::COUNTER_COUNT);
+  RayThroughput r;
+  r.primary_rays = counters[0];
+  r.secondary_rays = counters[1];
+  r.hits = counters[2];
+  for (const auto& p : timer_->read()) r.gpu_ms += p.ms;
+  return r;
+}
+
+}  // namespace strata::render
