@@ -75,6 +75,11 @@ void check(VkResult result, const char* what) {
 
 Context::Context(const ContextOptions& options) {
   bool validation = options.validation || env_flag("STRATA_VALIDATION");
+#ifndef NDEBUG
+  // Debug builds validate whenever the layer is installed (STRATA_VALIDATION=0 opts out).
+  const char* opt = std::getenv("STRATA_VALIDATION");
+  if (!(opt && std::strcmp(opt, "0") == 0) && has_layer(k_validation_layer)) validation = true;
+#endif
   create_instance(validation);
   std::string wanted = options.device;
   if (wanted.empty()) {

@@ -25,7 +25,8 @@ struct ContextOptions {
   // Empty: the STRATA_DEVICE environment variable, else lavapipe if present, else the first
   // device that supports everything strata needs.
   std::string device;
-  // Khronos validation layer; also enabled by STRATA_VALIDATION=1.
+  // Khronos validation layer; also enabled by STRATA_VALIDATION=1, and in debug builds whenever
+  // the layer is installed.
   bool validation = false;
 };
 

@@ -110,13 +110,26 @@ void DescriptorSet::bind_tlas(uint32_t binding, VkAccelerationStructureKHR tlas)
   vkUpdateDescriptorSets(ctx_.device(), 1, &w, 0, nullptr);
 }
 
-void dispatch_2d(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, uint32_t width, uint32_t height,
-                 const void* push_constants, uint32_t push_bytes) {
+namespace {
+void bind(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, const void* push_constants,
+          uint32_t push_bytes) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline());
   if (push_bytes > 0) vkCmdPushConstants(cmd, p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes, push_constants);
   VkDescriptorSet s = set.handle();
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout(), 0, 1, &s, 0, nullptr);
+}
+}  // namespace
+
+void dispatch_2d(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, uint32_t width, uint32_t height,
+                 const void* push_constants, uint32_t push_bytes) {
+  bind(cmd, p, set, push_constants, push_bytes);
   vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
+}
+
+void dispatch_1d(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, uint32_t count,
+                 const void* push_constants, uint32_t push_bytes) {
+  bind(cmd, p, set, push_constants, push_bytes);
+  vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
 }
 
 void compute_barrier(VkCommandBuffer cmd) {

@@ -68,6 +68,10 @@ class DescriptorSet {
 void dispatch_2d(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, uint32_t width, uint32_t height,
                  const void* push_constants = nullptr, uint32_t push_bytes = 0);
 
+// The same for a 1D pass with 64-wide workgroups covering `count` items.
+void dispatch_1d(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, uint32_t count,
+                 const void* push_constants = nullptr, uint32_t push_bytes = 0);
+
 // Full compute-to-compute/transfer barrier between passes.
 void compute_barrier(VkCommandBuffer cmd);
 

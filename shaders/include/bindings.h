@@ -13,7 +13,8 @@
 #define BINDING_FRAME 8
 #define BINDING_COUNTERS 9
 #define BINDING_ACCUM 10
-#define BINDING_RAYS 11   // benchmark rays (ray_throughput pass)
+#define BINDING_PROBE_RAYS 11  // ray_probe pass: rays in
+#define BINDING_PROBE_HITS 12  // ray_probe pass: hits out
 
 // Specialization constants of the passes (constant_id).
 #define SPEC_THIN_LENS 0

@@ -3,11 +3,21 @@
 // GpuTest fails any test during which the layer reported an error.
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "gpu/context.h"
 
 namespace strata::test {
 
 gpu::Context& gpu_context();
+
+// gtest parameter names cannot contain '-': "lod-cliff" -> "lod_cliff".
+inline std::string scene_param_name(const ::testing::TestParamInfo<std::string>& param) {
+  std::string n = param.param;
+  for (auto& ch : n)
+    if (ch == '-') ch = '_';
+  return n;
+}
 
 class GpuTest : public ::testing::Test {
  protected:

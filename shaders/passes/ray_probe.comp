@@ -1,0 +1,42 @@
+#version 460
+// Pass `ray_probe`: traces an explicit list of rays and returns each closest hit as the ray query
+// reports it (instance, primitive, triangle, barycentrics, t). Used to check the acceleration
+// structures against a CPU intersector and, by the service, to pick objects under a pixel.
+#extension GL_EXT_ray_query : require
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
+
+#include "include/bindings.h"
+#include "include/probe_data.h"
+#include "include/scene_bridge.glsl"
+
+layout(push_constant) uniform Dispatch { GpuDispatchConstants u_dispatch; };
+layout(set = 0, binding = BINDING_PROBE_RAYS, std430) readonly buffer Rays { GpuProbeRay b_rays[]; };
+layout(set = 0, binding = BINDING_PROBE_HITS, std430) writeonly buffer Hits { GpuProbeHit b_hits[]; };
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= u_dispatch.sample_count) return;
+  GpuProbeRay r = b_rays[i];
+  RayHit h;
+  GpuProbeHit out_hit;
+  out_hit.t = -1.0;
+  out_hit.instance = 0u;
+  out_hit.geometry = 0u;
+  out_hit.triangle = 0u;
+  out_hit.bary = vec2(0.0);
+  out_hit.pad = vec2(0.0);
+  rayQueryEXT rq;
+  rayQueryInitializeEXT(rq, u_tlas, gl_RayFlagsOpaqueEXT, 0xFF, r.origin_tmin.xyz, r.origin_tmin.w, r.dir_tmax.xyz, r.dir_tmax.w);
+  while (rayQueryProceedEXT(rq)) {
+  }
+  if (rayQueryGetIntersectionTypeEXT(rq, true) == gl_RayQueryCommittedIntersectionTriangleEXT) {
+    out_hit.t = rayQueryGetIntersectionTEXT(rq, true);
+    out_hit.instance = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(rq, true));
+    out_hit.geometry = uint(rayQueryGetIntersectionGeometryIndexEXT(rq, true));
+    out_hit.triangle = uint(rayQueryGetIntersectionPrimitiveIndexEXT(rq, true));
+    out_hit.bary = rayQueryGetIntersectionBarycentricsEXT(rq, true);
+  }
+  b_hits[i] = out_hit;
+}
