@@ -89,7 +89,9 @@ class Context {
   std::atomic<uint64_t> validation_errors_{0};
   mutable std::mutex messages_mutex_;
   std::vector<std::string> messages_;
-  mutable std::mutex queue_mutex_;  // vkQueueSubmit and the command pool need external sync
+  // vkQueueSubmit and the command pool need external sync; recursive so that a recording callback may
+  // itself upload through a staging copy.
+  mutable std::recursive_mutex queue_mutex_;
 };
 
 }  // namespace strata::gpu
