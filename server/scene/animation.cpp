@@ -1,0 +1,105 @@
+#include "scene/animation.h"
+
+#include <algorithm>
+
+#include "scene/transform.h"
+
+namespace strata::scene {
+namespace {
+
+// Index i of the segment [keys[i], keys[i+1]] holding `time` and the blend weight within it.
+// Returns false (with i = the clamped key) when `time` is outside the keys or exactly on key i.
+template <typename Key>
+bool find_segment(const std::vector<Key>& keys, float time, size_t& index, float& weight) {
+  if (time <= keys.front().time) {
+    index = 0;
+    return false;
+  }
+  if (time >= keys.back().time) {
+    index = keys.size() - 1;
+    return false;
+  }
+  const auto upper = std::upper_bound(keys.begin(), keys.end(), time,
+                                      [](float t, const Key& k) { return t < k.time; });
+  index = static_cast<size_t>(upper - keys.begin()) - 1;
+  const float t0 = keys[index].time;
+  const float t1 = keys[index + 1].time;
+  if (time == t0 || t1 <= t0) return false;
+  weight = (time - t0) / (t1 - t0);
+  return true;
+}
+
+glm::quat slerp_unit(const glm::quat& a, const glm::quat& b, float weight) {
+  // glm::slerp takes the shorter arc; for nearly equal rotations it falls back to an
+  // unnormalised lerp, hence the normalisation.
+  return glm::normalize(glm::slerp(a, b, weight));
+}
+
+}  // namespace
+
+CameraKey sample_camera(const std::vector<CameraKey>& keys, float time) {
+  size_t i = 0;
+  float w = 0.0f;
+  if (!find_segment(keys, time, i, w)) return keys[i];
+  CameraKey out;
+  out.time = time;
+  out.position = glm::mix(keys[i].position, keys[i + 1].position, w);
+  out.orientation = slerp_unit(keys[i].orientation, keys[i + 1].orientation, w);
+  return out;
+}
+
+TransformKey sample_transform(const std::vector<TransformKey>& keys, float time) {
+  size_t i = 0;
+  float w = 0.0f;
+  if (!find_segment(keys, time, i, w)) return keys[i];
+  TransformKey out;
+  out.time = time;
+  out.translation = glm::mix(keys[i].translation, keys[i + 1].translation, w);
+  out.rotation = slerp_unit(keys[i].rotation, keys[i + 1].rotation, w);
+  out.scale = glm::mix(keys[i].scale, keys[i + 1].scale, w);
+  return out;
+}
+
+float frame_time(uint32_t frame, float frames_per_second) {
+  return static_cast<float>(static_cast<double>(frame) / static_cast<double>(frames_per_second));
+}
+
+float animation_duration(const Animation& animation) {
+  float end = 0.0f;
+  if (!animation.camera.empty()) end = std::max(end, animation.camera.back().time);
+  for (const InstanceTrack& track : animation.tracks) {
+    if (!track.keys.empty()) end = std::max(end, track.keys.back().time);
+  }
+  if (!animation.lod_schedule.empty()) end = std::max(end, animation.lod_schedule.back().time);
+  return end;
+}
+
+FrameState Scene::frame_state(uint32_t frame) const {
+  const float time = frame_time(frame, animation.frames_per_second);
+  FrameState state;
+  state.camera = camera;
+  if (!animation.camera.empty()) {
+    const CameraKey key = sample_camera(animation.camera, time);
+    state.camera.position = key.position;
+    state.camera.orientation = key.orientation;
+  }
+  state.transforms.reserve(instances.size());
+  state.lods.reserve(instances.size());
+  for (const Instance& instance : instances) {
+    state.transforms.push_back(instance.transform);
+    state.lods.push_back(instance.lod);
+  }
+  for (const InstanceTrack& track : animation.tracks) {
+    if (track.instance < instances.size() && !track.keys.empty()) {
+      state.transforms[track.instance] = compose_trs(sample_transform(track.keys, time));
+    }
+  }
+  // The schedule is sorted by time, so the last key at or before `time` wins.
+  for (const LodKey& key : animation.lod_schedule) {
+    if (key.time > time) break;
+    if (key.instance < instances.size()) state.lods[key.instance] = key.level;
+  }
+  return state;
+}
+
+}  // namespace strata::scene

@@ -1,0 +1,15 @@
+#pragma once
+// One generator per built-in scene, each in its own file; registry.cpp names them.
+#include "scene/scene.h"
+
+namespace strata::scene::builtin {
+
+Scene make_cornell();
+Scene make_carousel();
+Scene make_lod_cliff();
+Scene make_chess();
+Scene make_foliage();
+Scene make_overlap_uv();
+Scene make_stiff();
+
+}  // namespace strata::scene::builtin

@@ -1,0 +1,89 @@
+#pragma once
+// Shared vocabulary of the built-in scenes: a scene builder, the animation clock and a camera
+// helper. Every built-in animation is kFrameCount frames at kFramesPerSecond.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "scene/scene.h"
+
+namespace strata::scene::builtin {
+
+inline constexpr uint32_t kFrameCount = 120;
+inline constexpr float kFramesPerSecond = 30.0f;
+inline constexpr float kPi = 3.14159265358979f;
+
+// Time of frame `frame`, computed exactly as Scene::frame_state computes it, so keys placed on
+// frames are hit exactly.
+float key_time(uint32_t frame);
+
+// Orientation of a camera at `eye` looking at `target` (cameras look down local -Z, +Y up).
+glm::quat look_at(const glm::vec3& eye, const glm::vec3& target,
+                  const glm::vec3& up = {0.0f, 1.0f, 0.0f});
+
+// compose_trs (scene/transform.h), the composition Scene::frame_state uses.
+glm::mat4 compose_key(const TransformKey& key);
+
+// Collects materials, meshes and instances and hands out their indices.
+class SceneBuilder {
+ public:
+  explicit SceneBuilder(std::string name);
+
+  uint32_t material(const std::string& name, glm::vec3 base_color, float metallic = 0.0f,
+                    float roughness = 1.0f);
+  // Pure Lambert (KHR_materials_specular factor 0: no dielectric highlight).
+  uint32_t matte(const std::string& name, glm::vec3 base_color);
+  // Emitters are matte too.
+  uint32_t emitter(const std::string& name, glm::vec3 radiance, bool double_sided = false);
+  uint32_t mesh(const std::string& name, std::vector<Primitive> primitives);
+  uint32_t instance(const std::string& name, std::vector<uint32_t> lod_meshes,
+                    const glm::mat4& transform, uint32_t lod = 0);
+  uint32_t instance(const std::string& name, uint32_t mesh,
+                    const glm::mat4& transform = glm::mat4(1.0f));
+
+  void camera(const glm::vec3& eye, const glm::vec3& target, float yfov);
+  // Camera keys on every frame from `path(frame)` -> (eye, target).
+  template <typename Path>
+  void camera_path(Path path);
+  // A still camera: two equal keys spanning the animation (so its length stays 120 frames).
+  void still_camera();
+  // Track keys on every frame from `motion(frame)`; also sets the instance's rest transform to
+  // the frame-0 key, so Instance::transform is what frame 0 shows.
+  template <typename Motion>
+  void track(uint32_t instance, Motion motion);
+  void lod_key(uint32_t frame, uint32_t instance, uint32_t level);
+
+  Scene& scene() { return scene_; }
+  Scene finish();  // sorts the LoD schedule by time and tracks by instance
+
+ private:
+  Scene scene_;
+};
+
+template <typename Path>
+void SceneBuilder::camera_path(Path path) {
+  scene_.animation.camera.clear();
+  for (uint32_t f = 0; f < kFrameCount; ++f) {
+    const auto [eye, target] = path(f);
+    scene_.animation.camera.push_back(CameraKey{key_time(f), eye, look_at(eye, target)});
+  }
+  scene_.camera.position = scene_.animation.camera.front().position;
+  scene_.camera.orientation = scene_.animation.camera.front().orientation;
+}
+
+template <typename Motion>
+void SceneBuilder::track(uint32_t instance, Motion motion) {
+  InstanceTrack track{instance, {}};
+  for (uint32_t f = 0; f < kFrameCount; ++f) {
+    TransformKey key = motion(f);
+    key.time = key_time(f);
+    track.keys.push_back(key);
+  }
+  scene_.instances[instance].transform = compose_key(track.keys.front());
+  scene_.animation.tracks.push_back(std::move(track));
+}
+
+}  // namespace strata::scene::builtin

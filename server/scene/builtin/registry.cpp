@@ -1,0 +1,60 @@
+// Names of the built-in scenes and load_scene, the one entry point for "name or path".
+#include <array>
+#include <utility>
+
+#include "scene/builtin/builtins.h"
+#include "scene/scene_io.h"
+
+namespace strata::scene {
+namespace {
+
+using Generator = Scene (*)();
+// The order is the order builtin_scene_names() reports; cornell, the default, comes first.
+constexpr std::array<std::pair<const char*, Generator>, 7> kBuiltins = {{
+    {"cornell", builtin::make_cornell},
+    {"carousel", builtin::make_carousel},
+    {"lod-cliff", builtin::make_lod_cliff},
+    {"chess", builtin::make_chess},
+    {"foliage", builtin::make_foliage},
+    {"overlap-uv", builtin::make_overlap_uv},
+    {"stiff", builtin::make_stiff},
+}};
+
+}  // namespace
+
+std::vector<std::string> builtin_scene_names() {
+  std::vector<std::string> names;
+  for (const auto& [name, generator] : kBuiltins) names.emplace_back(name);
+  return names;
+}
+
+bool is_builtin_scene(const std::string& name) {
+  for (const auto& [builtin_name, generator] : kBuiltins) {
+    if (name == builtin_name) return true;
+  }
+  return false;
+}
+
+Scene builtin_scene(const std::string& name) {
+  for (const auto& [builtin_name, generator] : kBuiltins) {
+    if (name != builtin_name) continue;
+    Scene scene = generator();
+    try {
+      scene.validate();
+    } catch (const SceneError& e) {
+      throw SceneError("built-in scene '" + name + "': " + e.what());
+    }
+    return scene;
+  }
+  std::string known;
+  for (const auto& [builtin_name, generator] : kBuiltins)
+    known += std::string(known.empty() ? "" : ", ") + builtin_name;
+  throw SceneError("unknown built-in scene '" + name + "' (known: " + known + ")");
+}
+
+Scene load_scene(const std::string& name_or_path, const LoadLimits& limits) {
+  if (is_builtin_scene(name_or_path)) return builtin_scene(name_or_path);
+  return load_gltf_file(name_or_path, limits);
+}
+
+}  // namespace strata::scene

@@ -1,0 +1,60 @@
+#pragma once
+// Procedural primitives for the built-in scenes. All wind counter-clockwise seen from outside
+// (the side the normals point to) and carry UVs; curved shapes duplicate their seam vertices so
+// the UVs stay continuous.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace strata::scene::builtin {
+
+// A parallelogram origin, origin+u, origin+u+v, origin+v facing along cross(u, v), split into
+// cells x cells quads; uv spans [0,1]^2.
+Primitive quad(const glm::vec3& origin, const glm::vec3& u, const glm::vec3& v, uint32_t material,
+               uint32_t cells = 1);
+// A rectangle of size w x h centred at `center` facing `normal`.
+Primitive facing_quad(const glm::vec3& center, const glm::vec3& normal, float width, float height,
+                      uint32_t material);
+// Axis-aligned box centred at the origin; each face maps to the full [0,1]^2 UV square and is
+// split into cells x cells quads.
+Primitive box(const glm::vec3& half_extent, uint32_t material, uint32_t cells = 1);
+
+// A point of a lathe profile: radius and height. A repeated point makes a hard edge.
+using ProfilePoint = glm::vec2;
+// Surface of revolution about +Y: u = angle / 2pi, v = index along the profile / (n - 1).
+Primitive lathe(const std::vector<ProfilePoint>& profile, uint32_t segments, uint32_t material);
+Primitive uv_sphere(float radius, uint32_t segments, uint32_t rings, uint32_t material);
+Primitive cylinder(float radius, float height, uint32_t segments,
+                   uint32_t material);  // base at y = 0
+
+// Height field over [-size/2, size/2]^2 in x/z with n x n vertices; uv = grid coords / (n - 1).
+template <typename Height>
+Primitive height_field(float size, uint32_t n, uint32_t material, Height height);
+
+// Applies `m` to positions and normals (normals by the inverse transpose).
+Primitive transformed(Primitive p, const glm::mat4& m);
+// Appends `b` to `a` (same material assumed: a's is kept).
+void append(Primitive& a, const Primitive& b);
+
+// Implementation of height_field: vertices, then triangles, then normals from the triangles.
+Primitive grid_from_heights(float size, uint32_t n, uint32_t material,
+                            const std::vector<float>& heights);
+
+template <typename Height>
+Primitive height_field(float size, uint32_t n, uint32_t material, Height height) {
+  std::vector<float> heights;
+  heights.reserve(static_cast<size_t>(n) * n);
+  for (uint32_t j = 0; j < n; ++j) {
+    for (uint32_t i = 0; i < n; ++i) {
+      const float x = (static_cast<float>(i) / static_cast<float>(n - 1) - 0.5f) * size;
+      const float z = (static_cast<float>(j) / static_cast<float>(n - 1) - 0.5f) * size;
+      heights.push_back(height(x, z));
+    }
+  }
+  return grid_from_heights(size, n, material, heights);
+}
+
+}  // namespace strata::scene::builtin

@@ -1,0 +1,38 @@
+#pragma once
+// Internal to the glTF loader: the steps from a tinygltf::Model to a Scene, in the order
+// gltf_load.cpp runs them. Each throws SceneError naming the glTF field at fault.
+#include <optional>
+#include <vector>
+
+#include "scene/gltf_source.h"
+#include "scene/scene.h"
+
+namespace strata::scene::gltf {
+
+// Every glTF material, in order (gltf_mesh.cpp).
+void convert_materials(const Source& source, Scene& scene);
+// Every glTF mesh, in order, so glTF mesh i is Scene mesh i. Primitives without a material get a
+// default material appended to scene.materials (gltf_mesh.cpp).
+void convert_meshes(const Source& source, Scene& scene);
+
+// The node hierarchy of the scene being loaded (gltf_nodes.cpp).
+struct NodeTree {
+  int scene_index = -1;                 // the glTF scene used; -1 when the file has none
+  std::vector<int> parent;              // per node; -1 for roots
+  std::vector<TransformKey> local_trs;  // per node: its TRS (a matrix node's decomposed)
+  std::vector<glm::mat4> local_matrix;  // per node: its matrix (a TRS node's composed)
+  std::vector<uint32_t> instance_node;  // per Scene instance: the node it came from
+  int camera_node = -1;                 // the node Scene::camera came from
+};
+// Instances (one per node with a mesh, depth-first, MSFT_lod levels folded in) and the camera.
+NodeTree convert_nodes(const Source& source, Scene& scene);
+
+// Animation channels into InstanceTrack and camera keys (gltf_animation.cpp).
+void convert_animations(const Source& source, const NodeTree& tree, Scene& scene);
+
+// A glTF rotation [x, y, z, w] as a unit quaternion. Rotations already unit length to 1e-3 are
+// kept bit for bit (what strata wrote comes back unchanged); others are normalised.
+glm::quat read_rotation(const Source& source, double x, double y, double z, double w,
+                        const std::string& field);
+
+}  // namespace strata::scene::gltf

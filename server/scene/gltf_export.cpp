@@ -1,0 +1,295 @@
+// export_glb: a Scene as one .glb that load_glb_bytes reads back equal (operator==) to it.
+// Layout: node i is instance i (with `matrix`, or TRS plus extras.strata.rest_matrix when it is
+// animated, as glTF forbids `matrix` on animated nodes), then the camera node; both are the
+// scene's roots. Extra LoD levels are nodes outside the scene, named by the instance's MSFT_lod
+// ids. The default animation is one glTF animation: T/R/S channels per track, T/R channels on
+// the camera node. Everything else strata needs rides in extras (see gltf_extras.h).
+// Exactness: floats go into float accessors or into JSON as doubles (which read back exactly);
+// an emission above 1 is split into emissiveFactor * emissiveStrength in double precision.
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include <tiny_gltf.h>
+
+#include "scene/gltf_extras.h"
+#include "scene/scene_io.h"
+#include "scene/transform.h"
+
+namespace strata::scene {
+namespace {
+
+constexpr const char* kLodExtension = "MSFT_lod";
+constexpr const char* kEmissiveStrength = "KHR_materials_emissive_strength";
+constexpr const char* kSpecular = "KHR_materials_specular";
+
+class GlbBuilder {
+ public:
+  GlbBuilder() {
+    model_.asset.version = "2.0";
+    model_.asset.generator = "strata";
+    model_.buffers.emplace_back();
+  }
+
+  tinygltf::Model& model() { return model_; }
+
+  void use_extension(const char* name) {
+    if (std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), name) ==
+        model_.extensionsUsed.end()) {
+      model_.extensionsUsed.emplace_back(name);
+    }
+  }
+
+  // An accessor over `data` (elements of `components` components of `component_type`), in a
+  // buffer view of its own. `with_bounds`: also min/max, which glTF requires for POSITION and
+  // animation inputs (float data only).
+  template <typename T>
+  int accessor(const std::vector<T>& data, int component_type, int type, size_t components,
+               int target, bool with_bounds) {
+    std::vector<unsigned char>& buffer = model_.buffers[0].data;
+    buffer.resize((buffer.size() + 3) & ~size_t{3});  // 4-byte alignment for every view
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = buffer.size();
+    view.byteLength = data.size() * sizeof(T);
+    view.target = target;
+    const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
+    buffer.insert(buffer.end(), bytes, bytes + view.byteLength);
+    model_.bufferViews.push_back(view);
+
+    tinygltf::Accessor a;
+    a.bufferView = static_cast<int>(model_.bufferViews.size() - 1);
+    a.componentType = component_type;
+    a.type = type;
+    a.count = data.size() * sizeof(T) /
+              (components * static_cast<size_t>(tinygltf::GetComponentSizeInBytes(
+                                static_cast<uint32_t>(component_type))));
+    if (with_bounds && a.count > 0)
+      bounds(reinterpret_cast<const float*>(data.data()), a.count, components, a);
+    model_.accessors.push_back(a);
+    return static_cast<int>(model_.accessors.size() - 1);
+  }
+
+ private:
+  static void bounds(const float* f, size_t count, size_t components, tinygltf::Accessor& a) {
+    a.minValues.assign(f, f + components);
+    a.maxValues.assign(f, f + components);
+    for (size_t i = 0; i < count; ++i) {
+      for (size_t c = 0; c < components; ++c) {
+        a.minValues[c] = std::min(a.minValues[c], static_cast<double>(f[i * components + c]));
+        a.maxValues[c] = std::max(a.maxValues[c], static_cast<double>(f[i * components + c]));
+      }
+    }
+  }
+
+  tinygltf::Model model_;
+};
+
+constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
+constexpr int kArray = TINYGLTF_TARGET_ARRAY_BUFFER;
+constexpr int kElements = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
+
+void add_material(GlbBuilder& b, const Material& m) {
+  tinygltf::Material out;
+  out.name = m.name;
+  out.pbrMetallicRoughness.baseColorFactor = {m.base_color.r, m.base_color.g, m.base_color.b, 1.0};
+  out.pbrMetallicRoughness.metallicFactor = m.metallic;
+  out.pbrMetallicRoughness.roughnessFactor = m.roughness;
+  out.doubleSided = m.double_sided;
+  const double peak = std::max({m.emission.r, m.emission.g, m.emission.b});
+  const double scale = peak > 1.0 ? peak : 1.0;  // emissiveFactor must stay within [0, 1]
+  out.emissiveFactor = {m.emission.r / scale, m.emission.g / scale, m.emission.b / scale};
+  if (scale != 1.0) {
+    out.extensions[kEmissiveStrength] =
+        tinygltf::Value(tinygltf::Value::Object{{"emissiveStrength", tinygltf::Value(scale)}});
+    b.use_extension(kEmissiveStrength);
+  }
+  if (m.specular != 1.0f) {
+    out.extensions[kSpecular] =
+        tinygltf::Value(tinygltf::Value::Object{{"specularFactor", tinygltf::Value(double(m.specular))}});
+    b.use_extension(kSpecular);
+  }
+  b.model().materials.push_back(out);
+}
+
+tinygltf::Primitive primitive(GlbBuilder& b, const Primitive& p) {
+  tinygltf::Primitive out;
+  out.mode = TINYGLTF_MODE_TRIANGLES;
+  out.material = static_cast<int>(p.material);
+  out.attributes["POSITION"] = b.accessor(p.positions, kFloat, TINYGLTF_TYPE_VEC3, 3, kArray, true);
+  out.attributes["NORMAL"] = b.accessor(p.normals, kFloat, TINYGLTF_TYPE_VEC3, 3, kArray, false);
+  out.attributes["TEXCOORD_0"] = b.accessor(p.uvs, kFloat, TINYGLTF_TYPE_VEC2, 2, kArray, false);
+  // 16-bit indices when they fit (65535 itself is reserved for primitive restart).
+  if (p.positions.size() < 65535) {
+    std::vector<uint16_t> narrow(p.indices.size());
+    std::transform(p.indices.begin(), p.indices.end(), narrow.begin(),
+                   [](uint32_t i) { return static_cast<uint16_t>(i); });
+    out.indices = b.accessor(narrow, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR,
+                             1, kElements, false);
+  } else {
+    out.indices = b.accessor(p.indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
+                             1, kElements, false);
+  }
+  return out;
+}
+
+std::vector<double> doubles(std::initializer_list<float> values) {
+  return {values.begin(), values.end()};
+}
+
+// One sampler + channel animating `node`'s `path` with `values` at the times of accessor `input`.
+template <typename T>
+void channel(GlbBuilder& b, tinygltf::Animation& animation, int input, int node, const char* path,
+             const std::vector<T>& values, int type, size_t components) {
+  tinygltf::AnimationSampler sampler;
+  sampler.input = input;
+  sampler.output = b.accessor(values, kFloat, type, components, 0, false);
+  sampler.interpolation = "LINEAR";
+  animation.samplers.push_back(sampler);
+  tinygltf::AnimationChannel c;
+  c.sampler = static_cast<int>(animation.samplers.size() - 1);
+  c.target_node = node;
+  c.target_path = path;
+  animation.channels.push_back(c);
+}
+
+template <typename Key>
+int time_accessor(GlbBuilder& b, const std::vector<Key>& keys) {
+  std::vector<float> times;
+  for (const Key& k : keys) times.push_back(k.time);
+  return b.accessor(times, kFloat, TINYGLTF_TYPE_SCALAR, 1, 0, true);
+}
+
+void add_animation(GlbBuilder& b, const Scene& s, int camera_node) {
+  tinygltf::Animation animation;
+  animation.name = "default";
+  for (const InstanceTrack& track : s.animation.tracks) {
+    if (track.keys.empty()) continue;
+    const int input = time_accessor(b, track.keys);
+    std::vector<glm::vec3> translation, scale;
+    std::vector<glm::vec4> rotation;
+    for (const TransformKey& k : track.keys) {
+      translation.push_back(k.translation);
+      rotation.emplace_back(k.rotation.x, k.rotation.y, k.rotation.z, k.rotation.w);
+      scale.push_back(k.scale);
+    }
+    const int node = static_cast<int>(track.instance);
+    channel(b, animation, input, node, "translation", translation, TINYGLTF_TYPE_VEC3, 3);
+    channel(b, animation, input, node, "rotation", rotation, TINYGLTF_TYPE_VEC4, 4);
+    channel(b, animation, input, node, "scale", scale, TINYGLTF_TYPE_VEC3, 3);
+  }
+  if (!s.animation.camera.empty()) {
+    const int input = time_accessor(b, s.animation.camera);
+    std::vector<glm::vec3> position;
+    std::vector<glm::vec4> orientation;
+    for (const CameraKey& k : s.animation.camera) {
+      position.push_back(k.position);
+      orientation.emplace_back(k.orientation.x, k.orientation.y, k.orientation.z, k.orientation.w);
+    }
+    channel(b, animation, input, camera_node, "translation", position, TINYGLTF_TYPE_VEC3, 3);
+    channel(b, animation, input, camera_node, "rotation", orientation, TINYGLTF_TYPE_VEC4, 4);
+  }
+  if (!animation.channels.empty()) b.model().animations.push_back(std::move(animation));
+}
+
+void add_nodes(GlbBuilder& b, const Scene& s) {
+  tinygltf::Model& m = b.model();
+  std::vector<bool> animated(s.instances.size(), false);
+  for (const InstanceTrack& track : s.animation.tracks) {
+    if (track.instance < animated.size() && !track.keys.empty()) animated[track.instance] = true;
+  }
+  tinygltf::Scene scene;
+  scene.name = s.name;
+  scene.extras = gltf::scene_extras(s);
+  for (size_t i = 0; i < s.instances.size(); ++i) {
+    const Instance& instance = s.instances[i];
+    tinygltf::Node node;
+    node.name = instance.name;
+    node.mesh = static_cast<int>(instance.lod_meshes[0]);
+    if (animated[i]) {
+      const TransformKey trs = decompose_trs(instance.transform);
+      node.translation = doubles({trs.translation.x, trs.translation.y, trs.translation.z});
+      node.rotation = doubles({trs.rotation.x, trs.rotation.y, trs.rotation.z, trs.rotation.w});
+      node.scale = doubles({trs.scale.x, trs.scale.y, trs.scale.z});
+    } else {
+      for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) node.matrix.push_back(instance.transform[c][r]);
+      }
+    }
+    node.extras = gltf::node_extras(instance, animated[i]);
+    m.nodes.push_back(node);
+    scene.nodes.push_back(static_cast<int>(i));
+  }
+  tinygltf::Node camera;
+  camera.name = "camera";
+  camera.camera = 0;
+  camera.translation = doubles({s.camera.position.x, s.camera.position.y, s.camera.position.z});
+  const glm::quat& q = s.camera.orientation;
+  camera.rotation = doubles({q.x, q.y, q.z, q.w});
+  m.nodes.push_back(camera);
+  scene.nodes.push_back(static_cast<int>(m.nodes.size() - 1));
+  tinygltf::Camera lens;
+  lens.type = "perspective";
+  lens.perspective.yfov = s.camera.yfov;
+  lens.perspective.znear = 0.001;
+  lens.perspective.zfar = 1e9;
+  m.cameras.push_back(lens);
+
+  for (size_t i = 0; i < s.instances.size(); ++i) {
+    const Instance& instance = s.instances[i];
+    if (instance.lod_meshes.size() < 2) continue;
+    tinygltf::Value::Array ids;
+    for (size_t l = 1; l < instance.lod_meshes.size(); ++l) {
+      tinygltf::Node level;
+      level.name = instance.name + "_lod" + std::to_string(l);
+      level.mesh = static_cast<int>(instance.lod_meshes[l]);
+      m.nodes.push_back(level);
+      ids.emplace_back(static_cast<int>(m.nodes.size() - 1));
+    }
+    m.nodes[i].extensions[kLodExtension] =
+        tinygltf::Value(tinygltf::Value::Object{{"ids", tinygltf::Value(ids)}});
+    b.use_extension(kLodExtension);
+  }
+  m.scenes.push_back(scene);
+  m.defaultScene = 0;
+}
+
+}  // namespace
+
+std::vector<uint8_t> export_glb(const Scene& scene) {
+  try {
+    scene.validate();  // indices in range and numbers finite: the writer relies on both
+  } catch (const SceneError& e) {
+    throw SceneError("cannot export scene '" + scene.name + "': " + e.what());
+  }
+  GlbBuilder b;
+  for (const Material& m : scene.materials) add_material(b, m);
+  for (const Mesh& mesh : scene.meshes) {
+    tinygltf::Mesh out;
+    out.name = mesh.name;
+    for (const Primitive& p : mesh.primitives) out.primitives.push_back(primitive(b, p));
+    b.model().meshes.push_back(out);
+  }
+  add_nodes(b, scene);
+  add_animation(b, scene, static_cast<int>(scene.instances.size()));
+  std::ostringstream stream;
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&b.model(), stream, false, true)) {
+    throw SceneError("scene '" + scene.name + "': tinygltf could not write the .glb");
+  }
+  const std::string bytes = stream.str();
+  return {bytes.begin(), bytes.end()};
+}
+
+void export_glb_file(const Scene& scene, const std::filesystem::path& path) {
+  const std::vector<uint8_t> bytes = export_glb(scene);
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out ||
+      !out.write(reinterpret_cast<const char*>(bytes.data()),
+                 static_cast<std::streamsize>(bytes.size())) ||
+      !out.flush()) {
+    throw SceneError(path.string() + ": cannot write the .glb");
+  }
+}
+
+}  // namespace strata::scene

@@ -1,0 +1,177 @@
+// Scene::validate and Scene::triangle_count: the invariants every producer of a Scene (loaders,
+// built-in generators, clients) must meet before the renderer sees it.
+#include <cmath>
+#include <string>
+
+#include "scene/scene.h"
+
+namespace strata::scene {
+namespace {
+
+std::string at(const std::string& array, size_t index) {
+  return array + "[" + std::to_string(index) + "]";
+}
+
+[[noreturn]] void fail(const std::string& field, const std::string& what) {
+  throw SceneError(field + " " + what);
+}
+
+void check_index(const std::string& field, uint64_t value, size_t count, const char* noun) {
+  if (value >= count) {
+    fail(field, "= " + std::to_string(value) + " is out of range (" + std::to_string(count) + " " +
+                    noun + ")");
+  }
+}
+
+void check_finite(const std::string& field, float value) {
+  if (!std::isfinite(value)) fail(field, "is not finite");
+}
+template <int N>
+void check_finite(const std::string& field, const glm::vec<N, float>& value) {
+  for (int i = 0; i < N; ++i) {
+    if (!std::isfinite(value[i])) fail(field, "is not finite");
+  }
+}
+void check_finite(const std::string& field, const glm::quat& q) {
+  check_finite(field, glm::vec4(q.x, q.y, q.z, q.w));
+  if (glm::length(glm::vec4(q.x, q.y, q.z, q.w)) < 1e-6f) fail(field, "is a zero quaternion");
+}
+void check_finite(const std::string& field, const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c) check_finite(at(field, static_cast<size_t>(c)), m[c]);
+}
+
+void check_range(const std::string& field, float value, float lo, float hi) {
+  check_finite(field, value);
+  if (value < lo || value > hi) {
+    fail(field, "= " + std::to_string(value) + " is outside [" + std::to_string(lo) + ", " +
+                    std::to_string(hi) + "]");
+  }
+}
+
+void validate_material(const std::string& field, const Material& m) {
+  for (int c = 0; c < 3; ++c) check_range(field + ".base_color", m.base_color[c], 0.0f, 1.0f);
+  check_range(field + ".metallic", m.metallic, 0.0f, 1.0f);
+  check_range(field + ".roughness", m.roughness, 0.0f, 1.0f);
+  check_finite(field + ".emission", m.emission);
+  if (glm::any(glm::lessThan(m.emission, glm::vec3(0.0f))))
+    fail(field + ".emission", "is negative");
+}
+
+void validate_primitive(const std::string& field, const Primitive& p, size_t material_count) {
+  const size_t n = p.positions.size();
+  if (p.normals.size() != n) {
+    fail(field + ".normals", "has " + std::to_string(p.normals.size()) +
+                                 " entries, positions has " + std::to_string(n));
+  }
+  if (p.uvs.size() != n) {
+    fail(field + ".uvs",
+         "has " + std::to_string(p.uvs.size()) + " entries, positions has " + std::to_string(n));
+  }
+  if (p.indices.size() % 3 != 0) {
+    fail(field + ".indices",
+         "has " + std::to_string(p.indices.size()) + " entries, not a multiple of 3");
+  }
+  check_index(field + ".material", p.material, material_count, "materials");
+  for (size_t i = 0; i < p.indices.size(); ++i)
+    check_index(at(field + ".indices", i), p.indices[i], n, "vertices");
+  for (size_t i = 0; i < n; ++i) {
+    check_finite(at(field + ".positions", i), p.positions[i]);
+    check_finite(at(field + ".uvs", i), p.uvs[i]);
+    check_finite(at(field + ".normals", i), p.normals[i]);
+    if (std::abs(glm::length(p.normals[i]) - 1.0f) > 1e-3f)
+      fail(at(field + ".normals", i), "is not unit length");
+  }
+}
+
+void validate_camera(const Camera& c) {
+  check_finite("camera.position", c.position);
+  check_finite("camera.orientation", c.orientation);
+  check_finite("camera.yfov", c.yfov);
+  if (!(c.yfov > 0.0f && c.yfov < 3.14159265f))
+    fail("camera.yfov", "= " + std::to_string(c.yfov) + " is outside (0, pi)");
+  check_finite("camera.aperture", c.aperture);
+  if (c.aperture < 0.0f) fail("camera.aperture", "is negative");
+  check_finite("camera.focus_distance", c.focus_distance);
+  if (c.focus_distance <= 0.0f) fail("camera.focus_distance", "is not positive");
+}
+
+template <typename Key>
+void check_sorted(const std::string& field, const std::vector<Key>& keys) {
+  for (size_t i = 0; i < keys.size(); ++i) {
+    check_finite(at(field, i) + ".time", keys[i].time);
+    if (i > 0 && keys[i].time < keys[i - 1].time)
+      fail(at(field, i) + ".time", "is earlier than the key before it");
+  }
+}
+
+void validate_animation(const Scene& s) {
+  const Animation& a = s.animation;
+  check_finite("animation.frames_per_second", a.frames_per_second);
+  if (a.frames_per_second <= 0.0f) fail("animation.frames_per_second", "is not positive");
+  check_sorted("animation.camera", a.camera);
+  for (size_t i = 0; i < a.camera.size(); ++i) {
+    check_finite(at("animation.camera", i) + ".position", a.camera[i].position);
+    check_finite(at("animation.camera", i) + ".orientation", a.camera[i].orientation);
+  }
+  std::vector<bool> has_track(s.instances.size(), false);
+  for (size_t t = 0; t < a.tracks.size(); ++t) {
+    const std::string field = at("animation.tracks", t);
+    const InstanceTrack& track = a.tracks[t];
+    check_index(field + ".instance", track.instance, s.instances.size(), "instances");
+    if (has_track[track.instance])
+      fail(field + ".instance", "= " + std::to_string(track.instance) + " has a second track");
+    has_track[track.instance] = true;
+    check_sorted(field + ".keys", track.keys);
+    for (size_t k = 0; k < track.keys.size(); ++k) {
+      check_finite(at(field + ".keys", k) + ".translation", track.keys[k].translation);
+      check_finite(at(field + ".keys", k) + ".rotation", track.keys[k].rotation);
+      check_finite(at(field + ".keys", k) + ".scale", track.keys[k].scale);
+    }
+  }
+  check_sorted("animation.lod_schedule", a.lod_schedule);
+  for (size_t k = 0; k < a.lod_schedule.size(); ++k) {
+    const std::string field = at("animation.lod_schedule", k);
+    const LodKey& key = a.lod_schedule[k];
+    check_index(field + ".instance", key.instance, s.instances.size(), "instances");
+    check_index(field + ".level", key.level, s.instances[key.instance].lod_meshes.size(),
+                "LoD levels");
+  }
+}
+
+}  // namespace
+
+void Scene::validate() const {
+  for (size_t m = 0; m < materials.size(); ++m) validate_material(at("materials", m), materials[m]);
+  for (size_t m = 0; m < meshes.size(); ++m) {
+    for (size_t p = 0; p < meshes[m].primitives.size(); ++p) {
+      validate_primitive(at(at("meshes", m) + ".primitives", p), meshes[m].primitives[p],
+                         materials.size());
+    }
+  }
+  for (size_t i = 0; i < instances.size(); ++i) {
+    const std::string field = at("instances", i);
+    const Instance& instance = instances[i];
+    if (instance.lod_meshes.empty())
+      fail(field + ".lod_meshes", "is empty (an instance needs at least one mesh)");
+    for (size_t l = 0; l < instance.lod_meshes.size(); ++l) {
+      check_index(at(field + ".lod_meshes", l), instance.lod_meshes[l], meshes.size(), "meshes");
+    }
+    check_index(field + ".lod", instance.lod, instance.lod_meshes.size(), "LoD levels");
+    check_finite(field + ".transform", instance.transform);
+  }
+  validate_camera(camera);
+  check_finite("environment.radiance", environment.radiance);
+  if (glm::any(glm::lessThan(environment.radiance, glm::vec3(0.0f))))
+    fail("environment.radiance", "is negative");
+  validate_animation(*this);
+}
+
+size_t Scene::triangle_count() const {
+  size_t count = 0;
+  for (const Mesh& mesh : meshes) {
+    for (const Primitive& primitive : mesh.primitives) count += primitive.triangle_count();
+  }
+  return count;
+}
+
+}  // namespace strata::scene
