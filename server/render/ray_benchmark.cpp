@@ -4,35 +4,19 @@
 #include "render/frame_constants.h"
 
 namespace strata::render {
-namespace {
-
-constexpr gpu::Binding k_bindings[] = {
-    {BINDING_TLAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
-    {BINDING_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-    {BINDING_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-    {BINDING_PRIMITIVES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-    {BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-    {BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-    {BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-    {BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-};
-
-}  // namespace
 
 RayBenchmark::RayBenchmark(const gpu::Context& ctx, const scene::Scene& scene, uint32_t width, uint32_t height)
     : ctx_(ctx), scene_(scene), width_(width), height_(height) {
   gpu_scene_ = std::make_unique<GpuScene>(ctx, scene);
   constants_ = gpu::Buffer(ctx, sizeof(gpu::GpuFrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "frame constants");
   counters_ = gpu::Buffer(ctx, sizeof(uint32_t) * gpu::COUNTER_COUNT, gpu::k_storage_usage, gpu::Memory::Device, "counters");
-  pipeline_ = std::make_unique<gpu::ComputePipeline>(ctx, "ray_throughput", k_bindings, std::span<const gpu::SpecConstant>{},
+  auto bindings = GpuScene::bindings(/*with_lights=*/false);
+  bindings.push_back({BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER});
+  bindings.push_back({BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+  pipeline_ = std::make_unique<gpu::ComputePipeline>(ctx, "ray_throughput", bindings, std::span<const gpu::SpecConstant>{},
                                                      uint32_t(sizeof(gpu::GpuDispatchConstants)));
   set_ = std::make_unique<gpu::DescriptorSet>(ctx, *pipeline_);
-  set_->bind_tlas(BINDING_TLAS, gpu_scene_->tlas().handle());
-  set_->bind_buffer(BINDING_VERTICES, gpu_scene_->vertices());
-  set_->bind_buffer(BINDING_INDICES, gpu_scene_->indices());
-  set_->bind_buffer(BINDING_PRIMITIVES, gpu_scene_->primitives());
-  set_->bind_buffer(BINDING_INSTANCES, gpu_scene_->instances());
-  set_->bind_buffer(BINDING_MATERIALS, gpu_scene_->materials());
+  gpu_scene_->bind(*set_, /*with_lights=*/false);
   set_->bind_buffer(BINDING_FRAME, constants_);
   set_->bind_buffer(BINDING_COUNTERS, counters_);
   timer_ = std::make_unique<gpu::PassTimer>(ctx, 2);

@@ -8,19 +8,13 @@
 namespace strata::render {
 namespace {
 
-constexpr gpu::Binding k_path_trace_bindings[] = {
-    {BINDING_TLAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
-    {BINDING_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-    {BINDING_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-    {BINDING_PRIMITIVES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-    {BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-    {BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-    {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-    {BINDING_ALIAS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-    {BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-    {BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-    {BINDING_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-};
+std::vector<gpu::Binding> path_trace_bindings() {
+  auto b = GpuScene::bindings(/*with_lights=*/true);
+  b.push_back({BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER});
+  b.push_back({BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+  b.push_back({BINDING_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+  return b;
+}
 
 // The parts of the path tracer a frame needs, as specialization constants.
 struct Features {
@@ -45,7 +39,7 @@ struct Renderer::Variant {
   gpu::DescriptorSet set;
   Variant(const gpu::Context& ctx, Features f)
       : features(f),
-        pipeline(ctx, "path_trace", k_path_trace_bindings,
+        pipeline(ctx, "path_trace", path_trace_bindings(),
                  std::vector<gpu::SpecConstant>{{SPEC_THIN_LENS, f.thin_lens}, {SPEC_ENV_NEE, f.env_nee}, {SPEC_EMITTERS, f.emitters}},
                  sizeof(gpu::GpuDispatchConstants)),
         set(ctx, pipeline) {}
@@ -92,14 +86,7 @@ Renderer::Variant& Renderer::variant_for(const scene::FrameState& frame) {
   auto& slot = variants_[f.key()];
   if (!slot) {
     slot = std::make_unique<Variant>(ctx_, f);
-    slot->set.bind_tlas(BINDING_TLAS, scene_->tlas().handle());
-    slot->set.bind_buffer(BINDING_VERTICES, scene_->vertices());
-    slot->set.bind_buffer(BINDING_INDICES, scene_->indices());
-    slot->set.bind_buffer(BINDING_PRIMITIVES, scene_->primitives());
-    slot->set.bind_buffer(BINDING_INSTANCES, scene_->instances());
-    slot->set.bind_buffer(BINDING_MATERIALS, scene_->materials());
-    slot->set.bind_buffer(BINDING_EMITTERS, scene_->emitters());
-    slot->set.bind_buffer(BINDING_ALIAS, scene_->alias());
+    scene_->bind(slot->set, /*with_lights=*/true);
     slot->set.bind_buffer(BINDING_FRAME, constants_);
     slot->set.bind_buffer(BINDING_COUNTERS, counters_);
     slot->set.bind_buffer(BINDING_ACCUM, accum_);

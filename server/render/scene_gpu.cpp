@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "include/bindings.h"
+
 namespace strata::render {
 namespace {
 
@@ -107,6 +109,35 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
   emitters_.upload(table.emitters.data(), table.emitters.size() * sizeof(gpu::GpuEmitter));
   alias_.upload(table.alias.data(), table.alias.size() * sizeof(gpu::GpuAliasEntry));
   return origin;
+}
+
+std::vector<gpu::Binding> GpuScene::bindings(bool with_lights) {
+  std::vector<gpu::Binding> b = {
+      {BINDING_TLAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
+      {BINDING_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+      {BINDING_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+      {BINDING_PRIMITIVES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+      {BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+      {BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+  };
+  if (with_lights) {
+    b.push_back({BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+    b.push_back({BINDING_ALIAS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+  }
+  return b;
+}
+
+void GpuScene::bind(gpu::DescriptorSet& set, bool with_lights) const {
+  set.bind_tlas(BINDING_TLAS, tlas_->handle());
+  set.bind_buffer(BINDING_VERTICES, vertices_);
+  set.bind_buffer(BINDING_INDICES, indices_);
+  set.bind_buffer(BINDING_PRIMITIVES, primitives_);
+  set.bind_buffer(BINDING_INSTANCES, instances_);
+  set.bind_buffer(BINDING_MATERIALS, materials_);
+  if (with_lights) {
+    set.bind_buffer(BINDING_EMITTERS, emitters_);
+    set.bind_buffer(BINDING_ALIAS, alias_);
+  }
 }
 
 SceneMemory GpuScene::memory() const {

@@ -7,6 +7,7 @@
 
 #include "gpu/accel.h"
 #include "gpu/buffer.h"
+#include "gpu/pipeline.h"
 #include "include/frame_data.h"
 #include "include/scene_data.h"
 #include "render/emitters.h"
@@ -29,6 +30,11 @@ class GpuScene {
   glm::dvec3 record_update(VkCommandBuffer cmd, const scene::FrameState& frame);
 
   const scene::Scene& scene() const { return scene_; }
+  // The descriptor bindings of the scene bridge (shaders/include/scene_bridge.glsl), plus the
+  // emitter tables of light sampling when `with_lights`; bind() fills them in a set.
+  static std::vector<gpu::Binding> bindings(bool with_lights);
+  void bind(gpu::DescriptorSet& set, bool with_lights) const;
+
   const gpu::Buffer& vertices() const { return vertices_; }
   const gpu::Buffer& indices() const { return indices_; }
   const gpu::Buffer& primitives() const { return primitives_; }
