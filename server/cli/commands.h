@@ -11,5 +11,6 @@ Runner add_render_command(CLI::App& app);
 Runner add_export_scene_command(CLI::App& app);
 Runner add_list_scenes_command(CLI::App& app);
 Runner add_bench_command(CLI::App& app);
+Runner add_serve_command(CLI::App& app);
 
 }  // namespace strata::cli

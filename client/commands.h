@@ -1,0 +1,14 @@
+#pragma once
+// strata's subcommands: each registers its options on the CLI11 app and runs when chosen.
+// One file per subcommand (stream_command.cpp, health_command.cpp, ...).
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace strata::client {
+
+using Runner = std::function<int()>;
+
+Runner add_stream_command(CLI::App& app);
+Runner add_health_command(CLI::App& app);
+
+}  // namespace strata::client

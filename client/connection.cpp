@@ -1,0 +1,46 @@
+#include "connection.h"
+
+#include <algorithm>
+#include <climits>
+
+namespace strata::client {
+
+std::string status_code_name(grpc::StatusCode code) {
+  switch (code) {
+    case grpc::StatusCode::OK: return "OK";
+    case grpc::StatusCode::CANCELLED: return "CANCELLED";
+    case grpc::StatusCode::UNKNOWN: return "UNKNOWN";
+    case grpc::StatusCode::INVALID_ARGUMENT: return "INVALID_ARGUMENT";
+    case grpc::StatusCode::DEADLINE_EXCEEDED: return "DEADLINE_EXCEEDED";
+    case grpc::StatusCode::NOT_FOUND: return "NOT_FOUND";
+    case grpc::StatusCode::ALREADY_EXISTS: return "ALREADY_EXISTS";
+    case grpc::StatusCode::PERMISSION_DENIED: return "PERMISSION_DENIED";
+    case grpc::StatusCode::RESOURCE_EXHAUSTED: return "RESOURCE_EXHAUSTED";
+    case grpc::StatusCode::FAILED_PRECONDITION: return "FAILED_PRECONDITION";
+    case grpc::StatusCode::ABORTED: return "ABORTED";
+    case grpc::StatusCode::OUT_OF_RANGE: return "OUT_OF_RANGE";
+    case grpc::StatusCode::UNIMPLEMENTED: return "UNIMPLEMENTED";
+    case grpc::StatusCode::INTERNAL: return "INTERNAL";
+    case grpc::StatusCode::UNAVAILABLE: return "UNAVAILABLE";
+    case grpc::StatusCode::DATA_LOSS: return "DATA_LOSS";
+    case grpc::StatusCode::UNAUTHENTICATED: return "UNAUTHENTICATED";
+    default: return "code " + std::to_string(int(code));
+  }
+}
+
+RpcError::RpcError(const std::string& method, const grpc::Status& status)
+    : std::runtime_error(method + ": " + status_code_name(status.error_code()) + ": " + status.error_message()),
+      code(status.error_code()) {}
+
+std::shared_ptr<grpc::Channel> connect(const std::string& address, uint64_t max_receive_bytes, uint64_t max_send_bytes) {
+  grpc::ChannelArguments args;
+  args.SetMaxReceiveMessageSize(int(std::min<uint64_t>(max_receive_bytes, INT_MAX)));
+  args.SetMaxSendMessageSize(int(std::min<uint64_t>(max_send_bytes, INT_MAX)));
+  return grpc::CreateCustomChannel(address, grpc::InsecureChannelCredentials(), args);
+}
+
+void set_deadline(grpc::ClientContext& ctx, std::chrono::milliseconds timeout) {
+  ctx.set_deadline(std::chrono::system_clock::now() + timeout);
+}
+
+}  // namespace strata::client

@@ -1,0 +1,29 @@
+#pragma once
+// Channels to stratad and the errors of calls made over them.
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include <grpcpp/grpcpp.h>
+
+namespace strata::client {
+
+// A failed RPC: the method, the status code's name and the server's message.
+struct RpcError : std::runtime_error {
+  RpcError(const std::string& method, const grpc::Status& status);
+  grpc::StatusCode code;
+};
+
+std::string status_code_name(grpc::StatusCode code);
+
+// An insecure channel (stratad listens on loopback by default) whose receive limit is raised to
+// `max_receive_bytes` (frames) and send limit to `max_send_bytes` (inline scenes).
+std::shared_ptr<grpc::Channel> connect(const std::string& address, uint64_t max_receive_bytes = 4u << 20,
+                                       uint64_t max_send_bytes = 4u << 20);
+
+// Sets a deadline `timeout` from now on `ctx`.
+void set_deadline(grpc::ClientContext& ctx, std::chrono::milliseconds timeout);
+
+}  // namespace strata::client

@@ -1,0 +1,235 @@
+// `strata stream`: creates a session on stratad, plays the scene's default animation (or a
+// camera/transform/LoD script) frame by frame over Stream, writes EXR + PNG per frame and
+// frames.json with what the server returned, and deletes the session.
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "camera_path.h"
+#include "commands.h"
+#include "connection.h"
+#include "frame_files.h"
+#include "progress.h"
+#include "strata/v1/render.grpc.pb.h"
+
+namespace strata::client {
+namespace {
+
+namespace fs = std::filesystem;
+namespace v1 = strata::v1;
+using Clock = std::chrono::steady_clock;
+
+struct StreamArgs {
+  std::string server = "127.0.0.1:50051";
+  std::string scene = "cornell";
+  std::string scene_file;  // a local .glb sent inline
+  std::string scene_path;  // a file in the server's scene directory
+  std::string method = "pt";
+  uint32_t width = 256, height = 256, frames = 30, spp = 1, seed = 0, in_flight = 1;
+  uint32_t max_depth = 0;  // 0: the server's default
+  float exposure = 0.0f;
+  std::string encodings = "exr,png";
+  std::string out = "out/stream";
+  std::string camera_path;
+  double timeout_s = 600.0;
+  bool keep_session = false;
+  bool frames_given = false;
+};
+
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+std::vector<v1::ImageEncoding> parse_encodings(const std::string& list) {
+  static const std::map<std::string, v1::ImageEncoding> names = {
+      {"exr", v1::IMAGE_ENCODING_EXR_HALF}, {"raw", v1::IMAGE_ENCODING_RAW_RGBA16F}, {"png", v1::IMAGE_ENCODING_PNG_PREVIEW}};
+  std::vector<v1::ImageEncoding> out;
+  std::stringstream ss(list);
+  for (std::string item; std::getline(ss, item, ',');) {
+    auto it = names.find(item);
+    if (it == names.end()) throw std::runtime_error("--encodings: '" + item + "' is not one of exr, raw, png");
+    out.push_back(it->second);
+  }
+  if (out.empty()) throw std::runtime_error("--encodings is empty");
+  return out;
+}
+
+v1::CreateSessionRequest make_request(const StreamArgs& a) {
+  v1::CreateSessionRequest req;
+  const int sources = int(!a.scene_file.empty()) + int(!a.scene_path.empty());
+  if (sources > 1) throw std::runtime_error("give at most one of --scene-file and --scene-path (or --scene)");
+  if (!a.scene_file.empty()) {
+    std::ifstream in(a.scene_file, std::ios::binary);
+    if (!in) throw std::runtime_error("cannot read --scene-file " + a.scene_file);
+    req.mutable_scene()->set_glb(std::string(std::istreambuf_iterator<char>(in), {}));
+    req.mutable_scene()->set_label(fs::path(a.scene_file).filename().string());
+  } else if (!a.scene_path.empty()) {
+    req.mutable_scene()->set_path(a.scene_path);
+  } else {
+    req.mutable_scene()->set_builtin(a.scene);
+  }
+  req.mutable_resolution()->set_width(a.width);
+  req.mutable_resolution()->set_height(a.height);
+  req.set_method(a.method);
+  req.set_seed(a.seed);
+  req.mutable_options()->set_spp(a.spp);
+  if (a.max_depth) req.mutable_options()->set_max_depth(a.max_depth);
+  req.mutable_options()->set_exposure(a.exposure);
+  for (auto e : parse_encodings(a.encodings)) req.add_encodings(e);
+  return req;
+}
+
+struct LatencySummary {
+  double mean = 0, p50 = 0, p95 = 0, max = 0;
+};
+
+LatencySummary summarize(std::vector<double> v) {
+  LatencySummary s;
+  if (v.empty()) return s;
+  std::sort(v.begin(), v.end());
+  for (double x : v) s.mean += x;
+  s.mean /= double(v.size());
+  s.p50 = v[v.size() / 2];
+  s.p95 = v[std::min(v.size() - 1, size_t(double(v.size()) * 0.95))];
+  s.max = v.back();
+  return s;
+}
+
+int run_stream(const StreamArgs& a) {
+  const auto script = a.camera_path.empty() ? std::vector<v1::FrameInput>{} : load_camera_path(a.camera_path);
+  const uint32_t frames = !script.empty() && !a.frames_given ? uint32_t(script.size()) : a.frames;
+  if (frames == 0) throw std::runtime_error("--frames must be at least 1");
+  if (!script.empty() && frames > script.size())
+    throw std::runtime_error("--frames = " + std::to_string(frames) + " but " + a.camera_path + " has " +
+                             std::to_string(script.size()) + " frames");
+  if (a.in_flight == 0) throw std::runtime_error("--in-flight must be at least 1");
+  const auto timeout = std::chrono::milliseconds(int64_t(a.timeout_s * 1000.0));
+  const v1::CreateSessionRequest request = make_request(a);
+
+  // The server's limits first: the streaming channel takes frames up to limits.max_frame_bytes.
+  auto stub = v1::RenderService::NewStub(connect(a.server));
+  v1::ServerStatus status;
+  {
+    grpc::ClientContext ctx;
+    set_deadline(ctx, std::chrono::seconds(30));
+    auto st = stub->GetServerStatus(&ctx, {}, &status);
+    if (!st.ok()) throw RpcError("GetServerStatus (" + a.server + ")", st);
+  }
+  stub = v1::RenderService::NewStub(
+      connect(a.server, status.limits().max_frame_bytes(), request.ByteSizeLong() + (1u << 20)));
+
+  v1::Session session;
+  {
+    grpc::ClientContext ctx;
+    set_deadline(ctx, timeout);
+    auto st = stub->CreateSession(&ctx, request, &session);
+    if (!st.ok()) throw RpcError("CreateSession", st);
+  }
+  fs::create_directories(a.out);
+  std::cerr << "strata: " << session.name() << ": '" << session.scene() << "' " << a.width << "x" << a.height << " "
+            << session.method() << " on " << status.device() << " (" << a.server << ")\n";
+
+  nlohmann::json doc;
+  doc["server"] = {{"address", a.server}, {"device", status.device()}};
+  doc["session"] = message_to_json(session);
+  doc["frames"] = nlohmann::json::array();
+
+  grpc::ClientContext stream_ctx;
+  set_deadline(stream_ctx, timeout);
+  auto stream = stub->Stream(&stream_ctx);
+  Progress progress(frames, Progress::stderr_is_terminal());
+  std::map<uint64_t, Clock::time_point> sent_at;
+  std::vector<double> latencies;
+  uint64_t sent = 0, acked = 0, received = 0, dropped = 0, coalesced = 0;
+  const auto start = Clock::now();
+  bool stream_ok = true;
+  while (acked < frames) {
+    while (sent < frames && sent - acked < a.in_flight) {
+      v1::FrameInput in = script.empty() ? v1::FrameInput() : script[sent];
+      if (script.empty()) in.set_animation_frame(uint32_t(sent));
+      if (sent == 0) in.set_session(session.name());
+      in.set_sequence(sent + 1);
+      sent_at[sent + 1] = Clock::now();
+      if (!stream->Write(in)) break;
+      ++sent;
+    }
+    v1::Frame frame;
+    if (!stream->Read(&frame)) {
+      stream_ok = false;
+      break;
+    }
+    const double latency = ms_since(sent_at.at(frame.input_sequence()));
+    acked = frame.input_sequence();
+    ++received;
+    dropped += frame.frames_dropped();
+    coalesced += frame.inputs_coalesced();
+    latencies.push_back(latency);
+    nlohmann::json j = write_frame(frame, a.out, a.exposure);
+    j["client"] = {{"latency_ms", latency}, {"received_s", ms_since(start) / 1000.0}};
+    doc["frames"].push_back(std::move(j));
+    progress.frame(acked, frame.frame_index(), latency, frame.gpu_ms_total(), frame.frames_dropped());
+  }
+  progress.finish();
+  stream->WritesDone();
+  const grpc::Status st = stream->Finish();
+  if (!st.ok() || !stream_ok) {
+    if (st.ok()) throw std::runtime_error("Stream: the server ended the stream after " + std::to_string(received) + " frames");
+    throw RpcError("Stream", st);
+  }
+  const double wall = ms_since(start) / 1000.0;
+  const LatencySummary lat = summarize(latencies);
+  doc["summary"] = {{"frames_received", received}, {"inputs_sent", sent}, {"frames_dropped", dropped},
+                    {"inputs_coalesced", coalesced}, {"wall_s", wall}, {"fps", double(received) / wall},
+                    {"latency_ms", {{"mean", lat.mean}, {"p50", lat.p50}, {"p95", lat.p95}, {"max", lat.max}}},
+                    {"in_flight", a.in_flight}};
+  if (!a.keep_session) {
+    grpc::ClientContext ctx;
+    set_deadline(ctx, std::chrono::seconds(30));
+    v1::DeleteSessionRequest del;
+    del.set_name(session.name());
+    google::protobuf::Empty empty;
+    auto dst = stub->DeleteSession(&ctx, del, &empty);
+    if (!dst.ok()) throw RpcError("DeleteSession", dst);
+  }
+  std::ofstream(fs::path(a.out) / "frames.json") << doc.dump(2) << "\n";
+  std::cout << "wrote " << received << " frame(s) of '" << session.scene() << "' to " << a.out << " (" << double(received) / wall
+            << " fps, latency mean " << lat.mean << " ms, p95 " << lat.p95 << " ms)\n";
+  return 0;
+}
+
+}  // namespace
+
+Runner add_stream_command(CLI::App& app) {
+  auto a = std::make_shared<StreamArgs>();
+  auto* cmd = app.add_subcommand("stream", "stream frames of a scene from stratad serve; write EXR, PNG and frames.json");
+  cmd->add_option("--server", a->server, "stratad address host:port")->capture_default_str();
+  cmd->add_option("--scene", a->scene, "built-in scene name")->capture_default_str();
+  cmd->add_option("--scene-file", a->scene_file, "a local .glb file, sent inline");
+  cmd->add_option("--scene-path", a->scene_path, "a .gltf/.glb file in the server's --scene-dir");
+  cmd->add_option("--method", a->method, "rendering method")->capture_default_str();
+  cmd->add_option("--width", a->width, "image width")->capture_default_str();
+  cmd->add_option("--height", a->height, "image height")->capture_default_str();
+  auto* frames = cmd->add_option("--frames", a->frames, "frames to stream (default: the camera path's length)")->capture_default_str();
+  cmd->add_option("--spp", a->spp, "samples per pixel per frame")->capture_default_str();
+  cmd->add_option("--max-depth", a->max_depth, "path segments (default: the server's)");
+  cmd->add_option("--seed", a->seed, "random seed")->capture_default_str();
+  cmd->add_option("--exposure", a->exposure, "PNG preview exposure in stops")->capture_default_str();
+  cmd->add_option("--encodings", a->encodings, "images to request: exr, raw, png (comma-separated)")->capture_default_str();
+  cmd->add_option("--out", a->out, "output directory")->capture_default_str();
+  cmd->add_option("--camera-path", a->camera_path, "JSON script of FrameInputs, one per frame (see client/camera_path.h)");
+  cmd->add_option("--in-flight", a->in_flight, "inputs sent ahead of the frames received (1: lockstep, reproducible)")
+      ->capture_default_str();
+  cmd->add_option("--timeout", a->timeout_s, "seconds for the whole stream")->capture_default_str();
+  cmd->add_flag("--keep-session", a->keep_session, "do not delete the session at the end");
+  return [a, frames] {
+    a->frames_given = frames->count() > 0;
+    return run_stream(*a);
+  };
+}
+
+}  // namespace strata::client

@@ -1,0 +1,89 @@
+// `stratad serve`: the render service over gRPC on one device, until SIGTERM or SIGINT, which
+// drain it gracefully (health NOT_SERVING, new work refused, frames in flight finished, exit 0).
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include <pthread.h>
+
+#include "cli/commands.h"
+#include "gpu/context.h"
+#include "service/server.h"
+
+namespace strata::cli {
+namespace {
+
+struct ServeArgs {
+  service::ServiceConfig config;
+  double idle_timeout_s = 300.0;
+  double drain_timeout_s = 10.0;
+  std::string port_file;
+  std::string device;
+  bool validation = false;
+};
+
+void write_port_file(const std::string& path, int port) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << port << "\n";
+    if (!out) throw std::runtime_error("cannot write the port file " + tmp);
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+int run_serve(ServeArgs& a) {
+  // Every thread started from here on inherits the blocked signals; this one waits for them.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGINT);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  a.config.idle_timeout = std::chrono::milliseconds(int64_t(a.idle_timeout_s * 1000.0));
+  a.config.drain_timeout = std::chrono::milliseconds(int64_t(a.drain_timeout_s * 1000.0));
+  a.config.validate();
+  gpu::Context ctx({a.device, a.validation});
+  service::Server server(ctx, a.config);
+  if (!a.port_file.empty()) write_port_file(a.port_file, server.port());
+  std::cout << "stratad: serving strata.v1.RenderService on " << server.address() << " (device: " << ctx.device_name()
+            << ")" << std::endl;
+
+  int sig = 0;
+  sigwait(&signals, &sig);
+  std::cout << "stratad: " << strsignal(sig) << ": draining" << std::endl;
+  server.drain();
+  std::cout << "stratad: stopped" << std::endl;
+  return 0;
+}
+
+}  // namespace
+
+Runner add_serve_command(CLI::App& app) {
+  auto a = std::make_shared<ServeArgs>();
+  auto& c = a->config;
+  auto& l = c.limits;
+  auto* cmd = app.add_subcommand("serve", "serve strata.v1.RenderService over gRPC until SIGTERM (graceful drain)");
+  cmd->add_option("--listen", c.listen, "host:port to listen on; port 0 picks a free one")->capture_default_str();
+  cmd->add_option("--port-file", a->port_file, "write the port actually bound to this file once serving");
+  cmd->add_option("--scene-dir", c.scene_dir, "directory that SceneSource.path may load .gltf/.glb files from");
+  cmd->add_option("--max-sessions", l.max_sessions, "open sessions at once")->capture_default_str();
+  cmd->add_option("--max-pixels", l.max_pixels, "width * height of one session")->capture_default_str();
+  cmd->add_option("--max-dimension", l.max_dimension, "width and height each")->capture_default_str();
+  cmd->add_option("--max-scene-bytes", l.max_scene_bytes, "inline .glb and scene files")->capture_default_str();
+  cmd->add_option("--max-instances", l.max_instances, "instances of one scene")->capture_default_str();
+  cmd->add_option("--max-spp", l.max_spp, "samples per pixel per frame")->capture_default_str();
+  cmd->add_option("--max-depth", l.max_depth, "path segments")->capture_default_str();
+  cmd->add_option("--idle-timeout", a->idle_timeout_s, "seconds after which a session without a stream expires")->capture_default_str();
+  cmd->add_option("--drain-timeout", a->drain_timeout_s, "seconds that SIGTERM waits for frames in flight")->capture_default_str();
+  cmd->add_option("--encode-threads", c.encode_threads, "threads encoding frames")->capture_default_str();
+  cmd->add_option("--device", a->device, "Vulkan device name substring (default: $STRATA_DEVICE, else lavapipe)");
+  cmd->add_flag("--validation", a->validation, "enable the Khronos validation layer");
+  return [a] { return run_serve(*a); };
+}
+
+}  // namespace strata::cli

@@ -1,0 +1,37 @@
+#pragma once
+// What `stratad serve` is configured with: where it listens, where scene files may come from, and
+// the limits every request is held to (each violation names the field and the limit).
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace strata::service {
+
+struct ServiceLimits {
+  uint32_t max_sessions = 8;
+  uint64_t max_pixels = 1920ull * 1080;   // width * height of one session
+  uint32_t max_dimension = 8192;          // width and height each
+  uint64_t max_scene_bytes = 64ull << 20;  // inline .glb, and files in the scene directory
+  uint32_t max_instances = 4096;
+  uint32_t max_spp = 1024;
+  uint32_t max_depth = 64;
+};
+
+struct ServiceConfig {
+  std::string listen = "127.0.0.1:50051";    // host:port; port 0 picks a free one
+  std::filesystem::path scene_dir;           // allow-listed scene directory; empty refuses paths
+  ServiceLimits limits;
+  std::chrono::milliseconds idle_timeout{std::chrono::minutes(5)};  // idle sessions expire
+  std::chrono::milliseconds drain_timeout{std::chrono::seconds(10)};  // SIGTERM: frames in flight
+  std::chrono::milliseconds end_grace{std::chrono::seconds(2)};  // a stream being ended whose write does not complete is cancelled after this
+  uint32_t encode_threads = 2;
+  // Throws std::invalid_argument naming the setting and its allowed range.
+  void validate() const;
+};
+
+// Upper bound of a Frame message for `pixels` pixels with every encoding at once (raw RGBA16F
+// 8 B/px, EXR half with ZIP at most 9 B/px, PNG at most 4 B/px, plus headers and statistics).
+uint64_t max_frame_bytes(uint64_t pixels);
+
+}  // namespace strata::service

@@ -1,0 +1,105 @@
+// Session decisions: for the method, every option of DESIGN.md section 2 and the path tracer's
+// features, what was requested, what the session uses, whether it applies, and why.
+#include <algorithm>
+
+#include "service/input_checks.h"
+#include "service/options.h"
+
+namespace strata::service {
+namespace {
+
+v1::Decision make(const std::string& name, const std::string& requested, const std::string& value, bool applies,
+                  const std::string& reason) {
+  v1::Decision d;
+  d.set_name(name);
+  d.set_requested(requested);
+  d.set_value(value);
+  d.set_applies(applies);
+  d.set_reason(reason);
+  return d;
+}
+
+std::string u(uint32_t v) { return std::to_string(v); }
+
+}  // namespace
+
+std::vector<v1::Decision> decide(const MethodTraits& method, const v1::RenderOptions& req, const v1::RenderOptions& eff,
+                                 const std::vector<v1::ImageEncoding>& encodings, const v1::SceneAnalysis& scene) {
+  std::vector<v1::Decision> out;
+  const std::string m = method.name;
+  const std::string no_reuse = "method " + m + " has no reuse; used by the restir-* methods";
+  auto asked = [](bool has, const std::string& value) { return has ? value : std::string(); };
+
+  out.push_back(make("method", m, m, true,
+                     method.reuse ? "ReSTIR path tracing with reuse" : "reference path tracer: next-event estimation and MIS, no reuse"));
+  out.push_back(make("spp", asked(req.has_spp(), u(req.spp())), u(eff.spp()), true,
+                     method.reuse ? "initial paths per pixel per frame" : "samples per pixel per frame"));
+  out.push_back(make("max_depth", asked(req.has_max_depth(), u(req.max_depth())), u(eff.max_depth()), true,
+                     "path segments after the camera"));
+
+  // Resampling options.
+  out.push_back(make("shift", asked(req.has_shift(), shift_name(req.shift())), shift_name(eff.shift()), method.reuse,
+                     method.reuse ? "shift mapping between pixels' paths" : no_reuse));
+  out.push_back(make("mis", asked(req.has_mis(), mis_name(req.mis())), mis_name(eff.mis()), method.reuse,
+                     method.reuse ? "MIS weights of resampling" : no_reuse));
+  out.push_back(make("confidence_cap", asked(req.has_confidence_cap(), format_float(req.confidence_cap())),
+                     format_float(eff.confidence_cap()), method.reuse,
+                     method.reuse ? "temporal confidence is clamped to this" : no_reuse));
+  out.push_back(make("spatial_neighbors", asked(req.has_spatial_neighbors(), u(req.spatial_neighbors())),
+                     u(eff.spatial_neighbors()), method.reuse, method.reuse ? "front layer only" : no_reuse));
+  out.push_back(make("spatial_radius", asked(req.has_spatial_radius(), format_float(req.spatial_radius())),
+                     format_float(eff.spatial_radius()), method.reuse, method.reuse ? "pixels" : no_reuse));
+  out.push_back(make("initial_candidates", asked(req.has_initial_candidates(), u(req.initial_candidates())),
+                     u(eff.initial_candidates()), method.reuse, method.reuse ? "N_init paths per canonical sample" : no_reuse));
+
+  // LoD mapping: decided from the scene when auto.
+  {
+    const auto mode = eff.lod_mapping();
+    const std::string requested = asked(req.has_lod_mapping(), lod_mapping_name(req.lod_mapping()));
+    const std::string groups = std::to_string(scene.lod_groups()) + " instance(s) with LoD levels";
+    std::string value, reason;
+    if (!method.reuse) {
+      value = "off";
+      reason = no_reuse + " (the scene has " + groups + ")";
+    } else if (mode == v1::LOD_MAPPING_AUTO) {
+      value = scene.lod_groups() > 0 ? "uv" : "off";
+      reason = "auto: the scene has " + groups;
+    } else {
+      value = lod_mapping_name(mode);
+      reason = "requested; the scene has " + groups;
+    }
+    out.push_back(make("lod_mapping", requested, value, method.reuse, reason));
+  }
+  {
+    const std::string requested = asked(req.has_layers(), req.layers() == 0 ? "auto" : u(req.layers()));
+    std::string value = "1", reason = "method " + m + " has no pixel layers; used by restir-multilayer";
+    if (method.layers) {
+      value = eff.layers() == 0 ? "auto" : u(eff.layers());
+      reason = eff.layers() == 0 ? "auto: chosen per frame from the depth complexity" : "requested";
+    }
+    out.push_back(make("layers", requested, value, method.layers, reason));
+  }
+  out.push_back(make("splats_per_frame", asked(req.has_splats_per_frame(), u(req.splats_per_frame())),
+                     u(eff.splats_per_frame()), method.splatting,
+                     method.splatting ? "K splats per frame over the shutter interval (motion blur)"
+                                      : "method " + m + " does not splat; used by restir-splat methods"));
+  out.push_back(make("motion_blur", "", "off", method.splatting,
+                     method.splatting ? "FrameInput.camera.shutter opens the shutter"
+                                      : "method " + m + " renders each frame at one instant; FrameInput.camera.shutter is accepted and not used"));
+
+  // Features of the path tracer that follow from the scene.
+  const bool png = std::find(encodings.begin(), encodings.end(), v1::IMAGE_ENCODING_PNG_PREVIEW) != encodings.end();
+  out.push_back(make("exposure", asked(req.has_exposure(), format_float(req.exposure())), format_float(eff.exposure()), png,
+                     png ? "stops applied before the ACES curve of PNG previews" : "no PNG_PREVIEW encoding requested"));
+  const bool nee = scene.emissive_triangles() > 0 || scene.environment_light();
+  std::string lights = std::to_string(scene.emissive_triangles()) + " emissive triangles";
+  if (scene.environment_light()) lights += " + the environment";
+  out.push_back(make("next_event_estimation", "", nee ? "on" : "off", nee,
+                     nee ? "light sampling over " + lights : "the scene has no emissive triangles and a black environment"));
+  out.push_back(make("thin_lens", "", scene.thin_lens() ? "on" : "off", true,
+                     scene.thin_lens() ? "the scene camera has an aperture; FrameInput.camera.aperture = 0 turns it off"
+                                       : "the scene camera is a pinhole; FrameInput.camera.aperture > 0 turns it on"));
+  return out;
+}
+
+}  // namespace strata::service

@@ -1,0 +1,86 @@
+#include "service/frame_input.h"
+
+#include <set>
+#include <string>
+
+#include "service/errors.h"
+#include "service/options.h"
+
+namespace strata::service {
+namespace {
+
+std::string instance_range(const scene::Scene& s) {
+  return "scene '" + s.name + "' has " + std::to_string(s.instances.size()) + " instances (ids 0.." +
+         std::to_string(s.instances.size() - 1) + ")";
+}
+
+void check_instance(uint32_t id, const scene::Scene& s, const std::string& field) {
+  if (id >= s.instances.size()) fail_invalid(field + " = " + std::to_string(id) + " is not an instance id: " + instance_range(s));
+}
+
+}  // namespace
+
+void PendingInput::merge_newer(PendingInput&& newer) {
+  const uint64_t merged = coalesced + 1 + newer.coalesced;
+  if (newer.animation_frame) {
+    // The newer input restarts from the animation: earlier scene-state changes are superseded.
+    animation_frame = newer.animation_frame;
+    camera.reset();
+    transforms.clear();
+    lods.clear();
+  }
+  if (newer.camera) camera = newer.camera;
+  for (auto& [id, m] : newer.transforms) transforms[id] = m;
+  for (auto& [id, level] : newer.lods) lods[id] = level;
+  options.MergeFrom(newer.options);
+  if (newer.resolution) resolution = newer.resolution;
+  if (!newer.encodings.empty()) encodings = std::move(newer.encodings);
+  sequence = newer.sequence;
+  received = newer.received;
+  coalesced = merged;
+}
+
+PendingInput parse_frame_input(const v1::FrameInput& in, const scene::Scene& scene, const ServiceLimits& limits) {
+  PendingInput p;
+  p.sequence = in.sequence();
+  p.received = std::chrono::steady_clock::now();
+  if (in.has_animation_frame()) p.animation_frame = in.animation_frame();
+  if (in.has_camera()) p.camera = check_camera(in.camera(), "camera");
+
+  std::set<uint32_t> seen;
+  for (int i = 0; i < in.transforms_size(); ++i) {
+    const auto& t = in.transforms(i);
+    const std::string field = "transforms[" + std::to_string(i) + "]";
+    check_instance(t.instance_id(), scene, field + ".instance_id");
+    if (!seen.insert(t.instance_id()).second)
+      fail_invalid(field + ".instance_id = " + std::to_string(t.instance_id()) + " appears more than once in transforms");
+    p.transforms[t.instance_id()] = check_transform(t, field);
+  }
+  seen.clear();
+  for (int i = 0; i < in.lod_changes_size(); ++i) {
+    const auto& c = in.lod_changes(i);
+    const std::string field = "lod_changes[" + std::to_string(i) + "]";
+    check_instance(c.instance_id(), scene, field + ".instance_id");
+    if (!seen.insert(c.instance_id()).second)
+      fail_invalid(field + ".instance_id = " + std::to_string(c.instance_id()) + " appears more than once in lod_changes");
+    const auto& inst = scene.instances[c.instance_id()];
+    const size_t levels = inst.lod_meshes.size();
+    if (c.level() >= levels)
+      fail_invalid(field + ".level = " + std::to_string(c.level()) + " is out of range for instance " +
+                   std::to_string(c.instance_id()) + " '" + inst.name + "': it has " + std::to_string(levels) +
+                   " LoD level(s), 0.." + std::to_string(levels - 1));
+    p.lods[c.instance_id()] = c.level();
+  }
+  if (in.has_options()) {
+    check_options(in.options(), limits, "options");
+    p.options = in.options();
+  }
+  if (in.has_resolution()) {
+    check_resolution(in.resolution(), limits, "resolution");
+    p.resolution = std::make_pair(in.resolution().width(), in.resolution().height());
+  }
+  if (!in.encodings().empty()) p.encodings = check_encodings(in.encodings(), "encodings");
+  return p;
+}
+
+}  // namespace strata::service

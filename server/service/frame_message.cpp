@@ -1,0 +1,52 @@
+#include "service/frame_message.h"
+
+#include "service/encoding.h"
+
+namespace strata::service {
+
+void fill_statistics(const render::FrameStats& s, v1::FrameStatistics* out) {
+  for (const auto& [kind, n] : s.rays_traced) (*out->mutable_rays_traced())[kind] = n;
+  out->set_rays_total(s.rays_total());
+  out->set_paths(s.paths);
+  out->set_nonfinite_rejected(s.nonfinite_rejected);
+  for (const auto& [group, bytes] : s.memory_bytes) (*out->mutable_memory_bytes())[group] = bytes;
+  for (const auto& p : s.passes) {
+    auto* d = out->add_passes();
+    d->set_pass(p.pass);
+    d->set_ran(p.ran);
+    d->set_reason(p.reason);
+  }
+  out->set_tlas_builds(s.tlas_builds);
+  out->set_tlas_refits(s.tlas_refits);
+}
+
+v1::Frame make_frame_message(const RenderedFrame& f) {
+  v1::Frame m;
+  m.set_frame_index(f.frame_index);
+  m.set_input_sequence(f.input_sequence);
+  double encode_ms = 0.0;
+  for (auto encoding : f.encodings) {
+    v1::Image* img = m.add_images();
+    *img = encode_image(f.result.image, encoding, f.exposure);
+    encode_ms += img->encode_ms();
+  }
+  for (const auto& p : f.result.stats.pass_ms) {
+    auto* t = m.add_pass_ms();
+    t->set_pass(p.pass);
+    t->set_ms(p.ms);
+  }
+  m.set_gpu_ms_total(f.result.stats.gpu_ms_total);
+  fill_statistics(f.result.stats, m.mutable_statistics());
+  m.set_frames_dropped(f.dropped_before);
+  m.set_inputs_coalesced(f.coalesced);
+  m.set_history_reset(f.history_reset);
+  m.set_history_reset_reason(f.history_reset_reason);
+  m.mutable_timing()->set_queued_ms(f.queued_ms);
+  m.mutable_timing()->set_render_ms(f.render_ms);
+  m.mutable_timing()->set_encode_ms(encode_ms);
+  m.mutable_resolution()->set_width(f.result.image.width);
+  m.mutable_resolution()->set_height(f.result.image.height);
+  return m;
+}
+
+}  // namespace strata::service

@@ -1,0 +1,114 @@
+#include "service/options.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/renderer.h"
+#include "service/errors.h"
+#include "service/input_checks.h"
+
+namespace strata::service {
+namespace {
+
+std::string joined(const std::vector<std::string>& items) {
+  std::string s;
+  for (const auto& i : items) s += (s.empty() ? "" : ", ") + i;
+  return s;
+}
+
+void check_range(bool has, uint64_t v, uint64_t lo, uint64_t hi, const std::string& field, const std::string& limit = "") {
+  if (has && (v < lo || v > hi))
+    fail_invalid(field + " = " + std::to_string(v) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]" +
+                 (limit.empty() ? "" : " (" + limit + ")"));
+}
+
+void check_float(bool has, float v, float lo, float hi, const std::string& field) {
+  if (has && (!std::isfinite(v) || v < lo || v > hi))
+    fail_invalid(field + " = " + format_float(v) + " is outside [" + format_float(lo) + ", " + format_float(hi) + "]");
+}
+
+void check_enum(bool has, int v, bool (*valid)(int), const std::string& field, const std::string& names) {
+  if (has && !valid(v)) fail_invalid(field + " = " + std::to_string(v) + " is not one of " + names);
+}
+
+}  // namespace
+
+const std::vector<MethodTraits>& known_methods() {
+  static const std::vector<MethodTraits> methods = {
+      {"pt", false, false, false},
+      {"restir-gather", true, false, false},
+      {"restir-splat", true, true, false},
+      {"restir-splat-backup", true, true, false},
+      {"restir-multilayer", true, true, true},
+  };
+  return methods;
+}
+
+const MethodTraits& check_method(const std::string& requested, const std::string& field) {
+  const std::string name = requested.empty() ? "pt" : requested;
+  const auto available = render::available_methods();
+  const auto& methods = known_methods();
+  auto it = std::find_if(methods.begin(), methods.end(), [&](const MethodTraits& m) { return m.name == name; });
+  if (it == methods.end()) {
+    std::vector<std::string> names;
+    for (const auto& m : methods) names.push_back(m.name);
+    fail_invalid(field + " = '" + name + "' is not a method; methods: " + joined(names) + "; available: " + joined(available));
+  }
+  if (std::find(available.begin(), available.end(), name) == available.end())
+    fail_invalid(field + " '" + name + "' is not available yet; available: " + joined(available));
+  return *it;
+}
+
+void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, const std::string& field) {
+  const std::string p = field + ".";
+  check_range(o.has_spp(), o.spp(), 1, limits.max_spp, p + "spp", "max_spp");
+  check_range(o.has_max_depth(), o.max_depth(), 1, limits.max_depth, p + "max_depth", "max_depth");
+  check_enum(o.has_shift(), o.shift(), &v1::Shift_IsValid, p + "shift", "SHIFT_RECONNECTION, SHIFT_HYBRID");
+  check_enum(o.has_mis(), o.mis(), &v1::Mis_IsValid, p + "mis", "MIS_BALANCE, MIS_PAIRWISE");
+  check_enum(o.has_lod_mapping(), o.lod_mapping(), &v1::LodMapping_IsValid, p + "lod_mapping",
+                             "LOD_MAPPING_AUTO, LOD_MAPPING_OFF, LOD_MAPPING_UV");
+  check_range(o.has_layers(), o.layers(), 0, 8, p + "layers", "0 = auto");
+  check_float(o.has_confidence_cap(), o.confidence_cap(), 1.0f, 1e6f, p + "confidence_cap");
+  check_range(o.has_spatial_neighbors(), o.spatial_neighbors(), 0, 32, p + "spatial_neighbors");
+  check_float(o.has_spatial_radius(), o.spatial_radius(), 0.0f, 512.0f, p + "spatial_radius");
+  check_range(o.has_initial_candidates(), o.initial_candidates(), 1, 64, p + "initial_candidates");
+  check_range(o.has_splats_per_frame(), o.splats_per_frame(), 1, 64, p + "splats_per_frame");
+  check_float(o.has_exposure(), o.exposure(), -64.0f, 64.0f, p + "exposure");
+}
+
+void normalize(v1::RenderOptions& o) {
+  if (o.shift() == v1::SHIFT_UNSPECIFIED) o.set_shift(v1::SHIFT_HYBRID);
+  if (o.mis() == v1::MIS_UNSPECIFIED) o.set_mis(v1::MIS_PAIRWISE);
+  if (o.lod_mapping() == v1::LOD_MAPPING_UNSPECIFIED) o.set_lod_mapping(v1::LOD_MAPPING_AUTO);
+}
+
+v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const ServiceLimits& limits) {
+  v1::RenderOptions o;
+  o.set_spp(1);
+  o.set_max_depth(std::min<uint32_t>(16, limits.max_depth));
+  o.set_shift(v1::SHIFT_HYBRID);
+  o.set_mis(v1::MIS_PAIRWISE);
+  o.set_lod_mapping(v1::LOD_MAPPING_AUTO);
+  o.set_layers(0);
+  o.set_confidence_cap(20.0f);
+  o.set_spatial_neighbors(3);
+  o.set_spatial_radius(30.0f);
+  o.set_initial_candidates(1);
+  o.set_splats_per_frame(1);
+  o.set_exposure(0.0f);
+  o.MergeFrom(requested);  // proto3 optional: only fields that are set overwrite
+  normalize(o);
+  return o;
+}
+
+std::string shift_name(v1::Shift s) { return s == v1::SHIFT_RECONNECTION ? "reconnection" : "hybrid"; }
+std::string mis_name(v1::Mis m) { return m == v1::MIS_BALANCE ? "balance" : "pairwise"; }
+std::string lod_mapping_name(v1::LodMapping m) {
+  switch (m) {
+    case v1::LOD_MAPPING_OFF: return "off";
+    case v1::LOD_MAPPING_UV: return "uv";
+    default: return "auto";
+  }
+}
+
+}  // namespace strata::service

@@ -1,0 +1,66 @@
+#include "service/scene_analysis.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace strata::service {
+namespace {
+
+uint64_t triangles_of(const scene::Scene& s, uint32_t mesh) {
+  uint64_t n = 0;
+  for (const auto& p : s.meshes.at(mesh).primitives) n += p.triangle_count();
+  return n;
+}
+
+uint64_t emissive_triangles_of(const scene::Scene& s, uint32_t mesh) {
+  uint64_t n = 0;
+  for (const auto& p : s.meshes.at(mesh).primitives) {
+    const auto& e = s.materials.at(p.material).emission;
+    if (e.r > 0.0f || e.g > 0.0f || e.b > 0.0f) n += p.triangle_count();
+  }
+  return n;
+}
+
+float last_key_time(const scene::Animation& a) {
+  float t = 0.0f;
+  for (const auto& k : a.camera) t = std::max(t, k.time);
+  for (const auto& track : a.tracks)
+    for (const auto& k : track.keys) t = std::max(t, k.time);
+  for (const auto& k : a.lod_schedule) t = std::max(t, k.time);
+  return t;
+}
+
+}  // namespace
+
+v1::SceneAnalysis analyze_scene(const scene::Scene& s) {
+  v1::SceneAnalysis a;
+  a.set_scene(s.name);
+  a.set_triangles(s.triangle_count());
+  uint32_t groups = 0;
+  uint64_t emissive = 0;
+  for (size_t i = 0; i < s.instances.size(); ++i) {
+    const auto& inst = s.instances[i];
+    auto* info = a.add_instances();
+    info->set_id(uint32_t(i));
+    info->set_name(inst.name);
+    info->set_lod_levels(uint32_t(inst.lod_meshes.size()));
+    info->set_lod(inst.lod);
+    info->set_triangles(triangles_of(s, inst.lod_meshes.front()));
+    if (inst.lod_meshes.size() > 1) ++groups;
+    emissive += emissive_triangles_of(s, inst.lod_meshes.at(std::min<size_t>(inst.lod, inst.lod_meshes.size() - 1)));
+  }
+  a.set_lod_groups(groups);
+  a.set_emissive_triangles(emissive);
+  const auto& env = s.environment.radiance;
+  a.set_environment_light(env.r > 0.0f || env.g > 0.0f || env.b > 0.0f);
+  a.set_thin_lens(s.camera.aperture > 0.0f);
+  const bool moves = !s.animation.camera.empty() || !s.animation.tracks.empty() || !s.animation.lod_schedule.empty();
+  const float fps = s.animation.frames_per_second;
+  a.set_frames_per_second(fps);
+  uint32_t frames = 1;
+  if (moves && fps > 0.0f) frames = uint32_t(std::min(1e7f, std::floor(last_key_time(s.animation) * fps))) + 1;
+  a.set_animation_frames(frames);
+  return a;
+}
+
+}  // namespace strata::service

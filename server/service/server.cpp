@@ -1,0 +1,91 @@
+#include "service/server.h"
+
+#include <stdexcept>
+
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/health_check_service_interface.h>
+
+namespace strata::service {
+namespace {
+
+constexpr auto k_janitor_period = std::chrono::milliseconds(100);
+constexpr int k_slack_bytes = 1 << 20;
+
+std::string host_of(const std::string& listen) {
+  auto colon = listen.rfind(':');
+  return colon == std::string::npos ? listen : listen.substr(0, colon);
+}
+
+}  // namespace
+
+Server::Server(const gpu::Context& ctx, ServiceConfig config) {
+  config.validate();
+  core_ = std::make_unique<ServiceCore>(ctx, std::move(config));
+  service_ = std::make_unique<RenderServiceImpl>(*core_);
+  const auto& cfg = core_->config;
+
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  builder.AddListeningPort(cfg.listen, grpc::InsecureServerCredentials(), &port_);
+  builder.RegisterService(service_.get());
+  builder.SetMaxReceiveMessageSize(int(cfg.limits.max_scene_bytes) + k_slack_bytes);
+  builder.SetMaxSendMessageSize(int(max_frame_bytes(cfg.limits.max_pixels)));
+  // Dead clients are noticed (and their sessions' GPU state freed) within about 30 s.
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIME_MS, 20'000);
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIMEOUT_MS, 10'000);
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_PERMIT_WITHOUT_CALLS, 1);
+  builder.AddChannelArgument(GRPC_ARG_HTTP2_MIN_RECV_PING_INTERVAL_WITHOUT_DATA_MS, 5'000);
+  server_ = builder.BuildAndStart();
+  if (!server_ || port_ == 0) throw std::runtime_error("cannot listen on " + cfg.listen);
+  address_ = host_of(cfg.listen) + ":" + std::to_string(port_);
+  server_->GetHealthCheckService()->SetServingStatus(v1::RenderService::service_full_name(), true);
+  server_->GetHealthCheckService()->SetServingStatus(true);
+  janitor_ = std::thread([this] { janitor(); });
+}
+
+Server::~Server() { shutdown(); }
+
+void Server::janitor() {
+  std::unique_lock lock(mu_);
+  while (!stopping_) {
+    cv_.wait_for(lock, k_janitor_period);
+    lock.unlock();
+    const auto now = std::chrono::steady_clock::now();
+    core_->registry.expire_idle(now);
+    for (const auto& s : core_->streams.live()) s->enforce_end_deadline(now);
+    lock.lock();
+  }
+}
+
+void Server::drain() {
+  core_->draining = true;
+  server_->GetHealthCheckService()->SetServingStatus(false);
+  const grpc::Status closing(grpc::StatusCode::UNAVAILABLE,
+                             "stratad is draining (shutting down): the frames whose input had arrived were sent; this stream is closed");
+  for (const auto& s : core_->streams.live()) s->drain(closing);
+  // The janitor cancels streams still open after drain_timeout; give cancellation a moment more.
+  const auto deadline = std::chrono::steady_clock::now() + core_->config.drain_timeout + std::chrono::seconds(2);
+  while (core_->metrics.streams.load() > 0 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  shutdown();
+}
+
+void Server::shutdown() {
+  {
+    std::lock_guard lock(mu_);
+    if (stopped_) return;
+    stopped_ = true;
+    stopping_ = true;
+  }
+  cv_.notify_all();
+  if (janitor_.joinable()) janitor_.join();
+  core_->draining = true;
+  server_->GetHealthCheckService()->SetServingStatus(false);
+  server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(1));
+  server_->Wait();
+  core_->scheduler.stop();
+  core_->pool.wait_idle();
+}
+
+}  // namespace strata::service

@@ -1,0 +1,253 @@
+#include "service/session.h"
+
+#include <glm/glm.hpp>
+
+#include "include/frame_data.h"
+#include "service/scene_analysis.h"
+
+namespace strata::service {
+namespace {
+
+double ms_between(Session::Clock::time_point a, Session::Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+std::string size_text(uint32_t w, uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+void set_time(google::protobuf::Timestamp* t, std::chrono::system_clock::time_point tp) {
+  const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(tp.time_since_epoch()).count();
+  t->set_seconds(ns / 1'000'000'000);
+  t->set_nanos(int32_t(ns % 1'000'000'000));
+}
+
+// Device memory of a renderer that has not rendered yet, under the buffer groups that its frames
+// report (FrameStats::memory_bytes); the first frame's report replaces it.
+std::map<std::string, uint64_t> memory_before_first_frame(const render::Renderer& r) {
+  const render::SceneMemory m = r.gpu_scene().memory();
+  const auto& s = r.settings();
+  return {{"geometry", m.geometry},
+          {"acceleration", m.acceleration},
+          {"scene_per_frame", m.per_frame},
+          {"image", uint64_t(sizeof(glm::vec4)) * s.width * s.height},
+          {"frame_constants_and_counters", sizeof(gpu::GpuFrameConstants) + sizeof(uint32_t) * gpu::COUNTER_COUNT}};
+}
+
+}  // namespace
+
+Session::Session(std::string name, std::shared_ptr<const scene::Scene> scene, SessionSpec spec, const gpu::Context& ctx,
+                 ServiceMetrics& metrics)
+    : name_(std::move(name)),
+      scene_(std::move(scene)),
+      ctx_(ctx),
+      metrics_(metrics),
+      analysis_(analyze_scene(*scene_)),
+      created_steady_(Clock::now()),
+      created_(std::chrono::system_clock::now()),
+      spec_(std::move(spec)) {
+  settings_.width = spec_.width;
+  settings_.height = spec_.height;
+  settings_.method = spec_.method->name;
+  settings_.spp = spec_.options.spp();
+  settings_.max_depth = spec_.options.max_depth();
+  settings_.seed = spec_.seed;
+  decisions_ = decide(*spec_.method, spec_.requested, spec_.options, spec_.encodings, analysis_);
+  frame_state_ = scene_->frame_state(0);
+  idle_since_ = created_steady_;
+  std::lock_guard lock(render_mu_);
+  create_renderer_locked();
+}
+
+Session::~Session() = default;
+
+void Session::create_renderer_locked() {
+  auto r = std::make_unique<render::Renderer>(ctx_, *scene_, settings_);
+  auto memory = memory_before_first_frame(*r);
+  renderer_ = std::move(r);
+  std::lock_guard lock(mu_);
+  memory_ = std::move(memory);
+  released_ = false;
+}
+
+void Session::release_gpu() {
+  std::lock_guard rl(render_mu_);
+  std::lock_guard lock(mu_);
+  if (attached_) return;  // a new stream came first: its frames use the GPU state
+  renderer_.reset();
+  memory_.clear();
+  released_ = true;
+}
+
+uint64_t Session::device_bytes() const {
+  std::lock_guard lock(mu_);
+  uint64_t n = 0;
+  for (const auto& [group, bytes] : memory_) n += bytes;
+  return n;
+}
+
+bool Session::attach(const std::shared_ptr<AttachedStream>& stream) {
+  std::lock_guard lock(mu_);
+  if (attached_) return false;
+  attached_ = true;
+  stream_ = stream;
+  return true;
+}
+
+bool Session::detach(const AttachedStream* stream) {
+  std::lock_guard lock(mu_);
+  auto current = stream_.lock();
+  if (!attached_ || (current && current.get() != stream)) return false;
+  attached_ = false;
+  stream_.reset();
+  idle_since_ = Clock::now();
+  return true;
+}
+
+std::shared_ptr<AttachedStream> Session::stream() const {
+  std::lock_guard lock(mu_);
+  return stream_.lock();
+}
+
+void Session::note_input(uint64_t sequence) {
+  std::lock_guard lock(mu_);
+  last_input_ = sequence;
+}
+
+void Session::note_dropped(uint64_t frames) {
+  std::lock_guard lock(mu_);
+  frames_dropped_ += frames;
+}
+
+void Session::touch() {
+  std::lock_guard lock(mu_);
+  idle_since_ = Clock::now();
+}
+
+std::optional<Session::Clock::time_point> Session::idle_since() const {
+  std::lock_guard lock(mu_);
+  if (attached_) return std::nullopt;
+  return idle_since_;
+}
+
+void Session::apply_locked(const PendingInput& input, std::string& reset_reason) {
+  render::RenderSettings next = settings_;
+  v1::RenderOptions options;
+  {
+    std::lock_guard lock(mu_);
+    options = spec_.options;
+  }
+  options.MergeFrom(input.options);
+  normalize(options);
+  next.spp = options.spp();
+  next.max_depth = options.max_depth();
+  if (input.resolution) std::tie(next.width, next.height) = *input.resolution;
+
+  std::string changes;
+  auto add = [&](const std::string& c) { changes += (changes.empty() ? "" : "; ") + c; };
+  if (next.width != settings_.width || next.height != settings_.height)
+    add("resolution changed from " + size_text(settings_.width, settings_.height) + " to " + size_text(next.width, next.height));
+  if (next.spp != settings_.spp) add("spp changed from " + std::to_string(settings_.spp) + " to " + std::to_string(next.spp));
+  if (next.max_depth != settings_.max_depth)
+    add("max_depth changed from " + std::to_string(settings_.max_depth) + " to " + std::to_string(next.max_depth));
+  if (!changes.empty()) {
+    settings_ = next;
+    renderer_.reset();
+    reset_reason += (reset_reason.empty() ? "" : "; ") + changes + " (the GPU state is re-created)";
+  }
+
+  const bool options_changed = input.options.ByteSizeLong() > 0 || !input.encodings.empty();
+  {
+    std::lock_guard lock(mu_);
+    spec_.options = options;
+    spec_.requested.MergeFrom(input.options);
+    spec_.width = settings_.width;
+    spec_.height = settings_.height;
+    if (!input.encodings.empty()) spec_.encodings = input.encodings;
+    if (options_changed) decisions_ = decide(*spec_.method, spec_.requested, spec_.options, spec_.encodings, analysis_);
+  }
+
+  if (input.animation_frame) frame_state_ = scene_->frame_state(*input.animation_frame);
+  if (input.camera) frame_state_.camera = input.camera->camera;
+  for (const auto& [id, m] : input.transforms) frame_state_.transforms.at(id) = m;
+  for (const auto& [id, level] : input.lods) frame_state_.lods.at(id) = level;
+}
+
+RenderedFrame Session::render(PendingInput input) {
+  std::lock_guard rl(render_mu_);
+  const auto start = Clock::now();
+  std::string reason;
+  uint64_t index = 0;
+  {
+    std::lock_guard lock(mu_);
+    index = frames_rendered_;
+    if (frames_rendered_ == 0) reason = "first frame of the session";
+    else if (released_) reason = "the GPU state was released when the previous stream ended and is re-created";
+  }
+  apply_locked(input, reason);
+  if (!renderer_) create_renderer_locked();
+
+  RenderedFrame f;
+  f.result = renderer_->render(frame_state_, uint32_t(index));
+  const auto done = Clock::now();
+  f.frame_index = index;
+  f.input_sequence = input.sequence;
+  f.coalesced = input.coalesced;
+  f.history_reset = !reason.empty();
+  f.history_reset_reason = reason;
+  f.queued_ms = ms_between(input.received, start);
+  f.render_ms = ms_between(start, done);
+  {
+    std::lock_guard lock(mu_);
+    f.encodings = spec_.encodings;
+    f.exposure = spec_.options.exposure();
+    memory_ = f.result.stats.memory_bytes;
+    last_passes_ = f.result.stats.passes;
+    ++frames_rendered_;
+    inputs_coalesced_ += input.coalesced;
+  }
+  metrics_.frames_rendered.fetch_add(1);
+  metrics_.inputs_coalesced.fetch_add(input.coalesced);
+  f.held = GaugeHold(metrics_.buffered_frame_bytes, int64_t(f.result.image.rgba.size() * sizeof(float)));
+  return f;
+}
+
+v1::Session Session::describe(const ServiceConfig& config) const {
+  v1::Session s;
+  s.set_name(name_);
+  s.set_scene(scene_->name);
+  s.set_seed(settings_.seed);  // constant after construction
+  *s.mutable_analysis() = analysis_;
+  set_time(s.mutable_create_time(), created_);
+  std::lock_guard lock(mu_);
+  s.mutable_resolution()->set_width(spec_.width);
+  s.mutable_resolution()->set_height(spec_.height);
+  s.set_method(spec_.method->name);
+  *s.mutable_options() = spec_.options;
+  for (auto e : spec_.encodings) s.add_encodings(e);
+  for (const auto& d : decisions_) *s.add_decisions() = d;
+  for (const auto& p : last_passes_) {
+    auto* out = s.add_passes();
+    out->set_pass(p.pass);
+    out->set_ran(p.ran);
+    out->set_reason(p.reason);
+  }
+  uint64_t total = 0;
+  for (const auto& [group, bytes] : memory_) {
+    (*s.mutable_memory()->mutable_bytes_by_group())[group] = bytes;
+    total += bytes;
+  }
+  s.mutable_memory()->set_total_bytes(total);
+  s.set_state(attached_ ? v1::Session::STREAMING : v1::Session::IDLE);
+  s.set_frames_rendered(frames_rendered_);
+  s.set_frames_dropped(frames_dropped_);
+  s.set_inputs_coalesced(inputs_coalesced_);
+  s.set_last_input_sequence(last_input_);
+  if (!attached_) {
+    const auto left = idle_since_ + config.idle_timeout - Clock::now();
+    set_time(s.mutable_expire_time(),
+             std::chrono::system_clock::now() + std::chrono::duration_cast<std::chrono::system_clock::duration>(left));
+  }
+  s.set_max_frame_bytes(max_frame_bytes(uint64_t(spec_.width) * spec_.height));
+  return s;
+}
+
+}  // namespace strata::service

@@ -1,0 +1,128 @@
+#pragma once
+// A session (sessions/{session}): its scene, method and options, the frame state that inputs
+// change, and the Renderer holding its GPU state. The Renderer is created with the session,
+// released when a stream ends, and re-created (history reset) by the next frame.
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <grpcpp/support/status.h>
+
+#include "gpu/context.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+#include "service/config.h"
+#include "service/frame_input.h"
+#include "service/metrics.h"
+#include "service/options.h"
+#include "strata/v1/render.pb.h"
+
+namespace strata::service {
+
+// What CreateSession asked for, checked.
+struct SessionSpec {
+  const MethodTraits* method = nullptr;
+  v1::RenderOptions requested;  // as the client sent them
+  v1::RenderOptions options;    // effective: every field set
+  uint32_t width = 0, height = 0, seed = 0;
+  std::vector<v1::ImageEncoding> encodings;
+};
+
+// One rendered frame on its way to the client.
+struct RenderedFrame {
+  render::FrameResult result;
+  uint64_t frame_index = 0;
+  uint64_t input_sequence = 0;
+  uint64_t coalesced = 0;  // inputs merged into the one rendered (and into frames dropped before it)
+  uint64_t dropped_before = 0;  // frames of this stream dropped since the previous one was sent
+  bool history_reset = false;
+  std::string history_reset_reason;
+  double queued_ms = 0.0, render_ms = 0.0;
+  std::vector<v1::ImageEncoding> encodings;
+  float exposure = 0.0f;
+  GaugeHold held;  // this frame's bytes on ServiceMetrics::buffered_frame_bytes
+};
+
+// The stream attached to a session, as the session and the registry see it.
+class AttachedStream {
+ public:
+  virtual ~AttachedStream() = default;
+  // Ends the stream with `status` as soon as no write is in flight (deleted, expired).
+  virtual void end(grpc::Status status) = 0;
+  // Finishes the frames whose input already arrived, then ends the stream with `status`.
+  virtual void drain(grpc::Status status) = 0;
+  // Cancels the call when an end requested earlier has not completed by `now` (a client that does
+  // not read can hold a write open forever).
+  virtual void enforce_end_deadline(std::chrono::steady_clock::time_point now) = 0;
+};
+
+class Session {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  Session(std::string name, std::shared_ptr<const scene::Scene> scene, SessionSpec spec, const gpu::Context& ctx,
+          ServiceMetrics& metrics);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  const std::string& name() const { return name_; }
+  const scene::Scene& scene() const { return *scene_; }
+  v1::Session describe(const ServiceConfig& config) const;
+
+  // One stream at a time: false when another one is attached.
+  bool attach(const std::shared_ptr<AttachedStream>& stream);
+  // Detaches `stream` if it is the one attached; true when it was.
+  bool detach(const AttachedStream* stream);
+  std::shared_ptr<AttachedStream> stream() const;
+
+  void note_input(uint64_t sequence);
+  void note_dropped(uint64_t frames);
+  void touch();
+  // While no stream is attached: since when the session is idle.
+  std::optional<Clock::time_point> idle_since() const;
+
+  // Applies `input` and renders one frame (re-creating the GPU state when it was released or the
+  // resolution or a renderer setting changed). Throws on device errors.
+  RenderedFrame render(PendingInput input);
+  // Frees the GPU state (device memory) unless a stream is attached; the next render re-creates it.
+  void release_gpu();
+  uint64_t device_bytes() const;
+
+ private:
+  void create_renderer_locked();  // render_mu_ held
+  void apply_locked(const PendingInput& input, std::string& reset_reason);
+
+  const std::string name_;
+  const std::shared_ptr<const scene::Scene> scene_;
+  const gpu::Context& ctx_;
+  ServiceMetrics& metrics_;
+  const v1::SceneAnalysis analysis_;
+  const Clock::time_point created_steady_;
+  const std::chrono::system_clock::time_point created_;
+
+  // Rendering (scheduler thread, and release_gpu): guarded by render_mu_.
+  std::mutex render_mu_;
+  std::unique_ptr<render::Renderer> renderer_;
+  scene::FrameState frame_state_;
+  render::RenderSettings settings_;
+
+  // Description and counters: guarded by mu_ (taken after render_mu_ when both are needed).
+  mutable std::mutex mu_;
+  SessionSpec spec_;
+  std::vector<v1::Decision> decisions_;
+  std::map<std::string, uint64_t> memory_;
+  std::vector<render::PassDecision> last_passes_;
+  std::weak_ptr<AttachedStream> stream_;
+  bool attached_ = false;
+  Clock::time_point idle_since_;
+  uint64_t frames_rendered_ = 0, frames_dropped_ = 0, inputs_coalesced_ = 0, last_input_ = 0;
+  bool released_ = false;
+};
+
+}  // namespace strata::service

@@ -1,0 +1,119 @@
+// The command-line client against a stratad process: `strata stream` reproduces `stratad render`
+// byte for byte for the same seed, follows a camera/transform/LoD script, and reports errors.
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "process.h"
+
+namespace strata::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::vector<std::string> stream_args(const std::string& address, const fs::path& out) {
+  return {strata_path(), "stream", "--server", address, "--scene", "cornell", "--method", "pt", "--width", "32",
+          "--height", "24", "--spp", "2", "--frames", "3", "--seed", "5", "--out", out.string()};
+}
+
+TEST(CliTest, StrataStreamReproducesStratadRenderForTheSameSeed) {
+  TempDir dir;
+  Daemon daemon;
+  const auto render = run_process({stratad_path(), "render", "--scene", "cornell", "--method", "pt", "--width", "32", "--height",
+                                   "24", "--spp", "2", "--frames", "3", "--seed", "5", "--out", (dir.path / "render").string()},
+                                  120s);
+  ASSERT_EQ(render.exit_code, 0) << render.output;
+  const auto stream = run_process(stream_args(daemon.address(), dir.path / "stream"), 120s);
+  ASSERT_EQ(stream.exit_code, 0) << stream.output;
+  auto raw_args = stream_args(daemon.address(), dir.path / "raw");
+  raw_args.insert(raw_args.end(), {"--encodings", "raw"});
+  const auto raw = run_process(raw_args, 120s);
+  ASSERT_EQ(raw.exit_code, 0) << raw.output;
+
+  for (const char* stem : {"frame_0000", "frame_0001", "frame_0002"}) {
+    SCOPED_TRACE(stem);
+    const std::string exr = read_file(dir.path / "render" / (std::string(stem) + ".exr"));
+    ASSERT_FALSE(exr.empty());
+    EXPECT_TRUE(read_file(dir.path / "stream" / (std::string(stem) + ".exr")) == exr) << "EXR differs from stratad render's";
+    EXPECT_TRUE(read_file(dir.path / "stream" / (std::string(stem) + ".png")) ==
+                read_file(dir.path / "render" / (std::string(stem) + ".png")))
+        << "PNG differs from stratad render's";
+    EXPECT_TRUE(read_file(dir.path / "raw" / (std::string(stem) + ".exr")) == exr) << "EXR made from RAW_RGBA16F differs";
+  }
+  EXPECT_FALSE(read_file(dir.path / "stream" / "frame_0000.exr") == read_file(dir.path / "stream" / "frame_0001.exr"));
+
+  const auto doc = nlohmann::json::parse(read_file(dir.path / "stream" / "frames.json"));
+  ASSERT_EQ(doc["frames"].size(), 3u);
+  for (const auto& f : doc["frames"]) {
+    EXPECT_GT(std::stoull(f["statistics"]["rays_total"].get<std::string>()), 0u);
+    EXPECT_FALSE(f["pass_ms"].empty());
+    EXPECT_TRUE(f.contains("gpu_ms_total"));
+    EXPECT_TRUE(f["client"].contains("latency_ms"));
+    EXPECT_EQ(f["files"]["exr"].get<std::string>().substr(0, 6), "frame_");
+  }
+  EXPECT_EQ(doc["summary"]["frames_received"], 3);
+  EXPECT_EQ(doc["session"]["scene"], "cornell");
+  EXPECT_TRUE(doc["session"].contains("decisions"));
+
+  // The sessions were deleted at the end.
+  auto stub = v1::RenderService::NewStub(loopback_channel(daemon.address()));
+  grpc::ClientContext ctx;
+  v1::ListSessionsResponse sessions;
+  ASSERT_TRUE(stub->ListSessions(&ctx, {}, &sessions).ok());
+  EXPECT_EQ(sessions.sessions_size(), 0);
+}
+
+TEST(CliTest, CameraPathScriptDrivesCameraLodAndResolution) {
+  TempDir dir;
+  Daemon daemon;
+  const fs::path script = dir.path / "path.json";
+  std::ofstream(script) << R"({"frames": [
+    {"animation_frame": 0},
+    {"camera": {"position": {"x": 0.1, "y": 1.0, "z": 3.5}, "orientation": {"w": 1}, "vertical_fov": 0.7},
+     "transforms": [{"instance_id": 1, "translation": {"x": 0.05}, "rotation": {"w": 1}, "scale": {"x": 1, "y": 1, "z": 1}}]},
+    {"resolution": {"width": 40, "height": 30}, "options": {"spp": 3}, "lod_changes": [{"instance_id": 0, "level": 0}]}
+  ]})";
+  const auto r = run_process({strata_path(), "stream", "--server", daemon.address(), "--scene", "cornell", "--width", "32",
+                              "--height", "24", "--camera-path", script.string(), "--out", (dir.path / "out").string()},
+                             120s);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto doc = nlohmann::json::parse(read_file(dir.path / "out" / "frames.json"));
+  ASSERT_EQ(doc["frames"].size(), 3u);
+  const auto& last = doc["frames"][2];
+  EXPECT_TRUE(last["history_reset"].get<bool>());
+  EXPECT_NE(last["history_reset_reason"].get<std::string>().find("resolution changed from 32x24 to 40x30"), std::string::npos);
+  EXPECT_EQ(last["resolution"]["width"], 40);
+  const auto bytes = read_file(dir.path / "out" / "frame_0002.exr");
+  const image::Image img = image::decode_exr(std::vector<uint8_t>(bytes.begin(), bytes.end()));
+  EXPECT_EQ(img.width, 40u);
+  EXPECT_EQ(img.height, 30u);
+  EXPECT_EQ(std::stoull(last["statistics"]["paths"].get<std::string>()), 40u * 30u * 3u);
+}
+
+TEST(CliTest, StrataStreamReportsTheServersError) {
+  TempDir dir;
+  Daemon daemon;
+  auto args = stream_args(daemon.address(), dir.path / "out");
+  args[5] = "no-such-scene";
+  const auto r = run_process(args, 60s);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("CreateSession: INVALID_ARGUMENT: scene.builtin = 'no-such-scene' is not a built-in scene"),
+            std::string::npos)
+      << r.output;
+
+  const fs::path bad = dir.path / "bad.json";
+  std::ofstream(bad) << R"({"frames": [{"camera": {"position": {"x": "far"}}}]})";
+  auto scripted = stream_args(daemon.address(), dir.path / "out2");
+  scripted.insert(scripted.end(), {"--camera-path", bad.string()});
+  const auto s = run_process(scripted, 60s);
+  EXPECT_NE(s.exit_code, 0);
+  EXPECT_NE(s.output.find("frames[0]"), std::string::npos) << s.output;
+}
+
+}  // namespace
+}  // namespace strata::test
