@@ -34,7 +34,7 @@ image::Image hdr_image(const strata::v1::Frame& f) {
     const auto& d = exr->data();
     return image::decode_exr(std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(d.data()), d.size()));
   }
-  if (const Image* raw = find(f, strata::v1::IMAGE_ENCODING_RAW_RGBA16F)) return decode_rgba16f(raw->data(), raw->width(), raw->height());
+  if (const Image* raw = find(f, strata::v1::IMAGE_ENCODING_RAW_RGBA16F)) return image::decode_rgba16f(std::span(reinterpret_cast<const uint8_t*>(raw->data().data()), raw->data().size()), raw->width(), raw->height());
   throw std::runtime_error("frame " + std::to_string(f.frame_index()) + " carries no HDR image (EXR_HALF or RAW_RGBA16F)");
 }
 
@@ -50,22 +50,6 @@ nlohmann::json message_to_json(const google::protobuf::Message& m) {
   return nlohmann::json::parse(text);
 }
 
-image::Image decode_rgba16f(const std::string& bytes, uint32_t width, uint32_t height) {
-  const size_t values = size_t(width) * height * 4;
-  if (bytes.size() != values * 2)
-    throw std::runtime_error("RAW_RGBA16F image of " + std::to_string(width) + "x" + std::to_string(height) + " needs " +
-                             std::to_string(values * 2) + " bytes, got " + std::to_string(bytes.size()));
-  image::Image img;
-  img.width = width;
-  img.height = height;
-  img.rgba.resize(values);
-  for (size_t i = 0; i < values; ++i) {
-    uint16_t h;
-    std::memcpy(&h, bytes.data() + 2 * i, 2);  // little-endian, as the server writes it
-    img.rgba[i] = glm::unpackHalf1x16(h);
-  }
-  return img;
-}
 
 std::string frame_file_stem(uint64_t frame_index) {
   char buf[32];

@@ -15,9 +15,6 @@ namespace strata::client {
 // The proto3 JSON mapping with field names as in the .proto and every field present.
 nlohmann::json message_to_json(const google::protobuf::Message& m);
 
-// RAW_RGBA16F bytes to an image; throws std::runtime_error when the size does not match.
-image::Image decode_rgba16f(const std::string& bytes, uint32_t width, uint32_t height);
-
 std::string frame_file_stem(uint64_t frame_index);
 
 // Writes frame_NNNN.exr and .png: the server's EXR_HALF and PNG_PREVIEW bytes as they came, and

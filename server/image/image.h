@@ -38,6 +38,11 @@ Image decode_exr(std::span<const uint8_t> bytes);
 // (EXR keeps its channel list sorted).
 std::vector<Channel> decode_exr_extra_channels(std::span<const uint8_t> bytes);
 
+// RAW_RGBA16F: 4 IEEE halfs per pixel (rounded as OpenEXR rounds), little-endian, top row first.
+std::vector<uint8_t> encode_rgba16f(const Image& img);
+// The inverse; throws ImageError when the byte count does not match width x height.
+Image decode_rgba16f(std::span<const uint8_t> bytes, uint32_t width, uint32_t height);
+
 // 8-bit sRGB PNG preview: exposure (stops) then the ACES filmic curve (Narkowicz fit), then sRGB OETF.
 // Non-finite pixels are written magenta so that they cannot go unnoticed.
 std::vector<uint8_t> encode_png_preview(const Image& img, float exposure_stops = 0.0f);

@@ -211,7 +211,7 @@ image::Image frame_image(const v1::Frame& frame, v1::ImageEncoding encoding) {
   const auto& d = img->data();
   std::vector<uint8_t> bytes(d.begin(), d.end());
   if (encoding == v1::IMAGE_ENCODING_EXR_HALF) return image::decode_exr(bytes);
-  return service::decode_rgba16f(bytes, img->width(), img->height());
+  return image::decode_rgba16f(bytes, img->width(), img->height());
 }
 
 bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds timeout) {
