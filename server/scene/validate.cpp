@@ -138,16 +138,28 @@ void validate_animation(const Scene& s) {
   }
 }
 
+constexpr size_t kMaxPrimitivesPerMesh = 4096;
+constexpr size_t kMaxInstances = (size_t(1) << 20) - 1;
+
 }  // namespace
 
 void Scene::validate() const {
   for (size_t m = 0; m < materials.size(); ++m) validate_material(at("materials", m), materials[m]);
   for (size_t m = 0; m < meshes.size(); ++m) {
+    // A path sample stores the primitive in 12 bits (shaders/restir/reservoir.h).
+    if (meshes[m].primitives.size() > kMaxPrimitivesPerMesh)
+      fail(at("meshes", m) + ".primitives",
+           "has " + std::to_string(meshes[m].primitives.size()) + " primitives; the limit is " +
+               std::to_string(kMaxPrimitivesPerMesh) + " per mesh");
     for (size_t p = 0; p < meshes[m].primitives.size(); ++p) {
       validate_primitive(at(at("meshes", m) + ".primitives", p), meshes[m].primitives[p],
                          materials.size());
     }
   }
+  // Instance ids live in 20 bits of a path sample, all ones reserved (shaders/restir/reservoir.h).
+  if (instances.size() > kMaxInstances)
+    fail("instances", "has " + std::to_string(instances.size()) + " entries; the limit is " +
+                          std::to_string(kMaxInstances));
   for (size_t i = 0; i < instances.size(); ++i) {
     const std::string field = at("instances", i);
     const Instance& instance = instances[i];

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <glm/gtc/constants.hpp>
+#include <glm/packing.hpp>
 #define STRATA_NAMESPACE_BEGIN namespace strata::gpu { using namespace glm; using uint = std::uint32_t;
 #define STRATA_NAMESPACE_END }
 #define INOUT(T) T&

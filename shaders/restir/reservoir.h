@@ -1,0 +1,152 @@
+// Path samples and reservoirs (DESIGN.md section 3), and their packed form in device memory.
+//
+// A path sample is an area reservoir's sample (Zhang et al. 2024; RS-main 3.5): the primary hit
+// x1 is stored as the surface point itself (instance, primitive, triangle, barycentrics and LoD
+// level: object space, so it moves with its object and can be splatted exactly, RS-main 4.1.1),
+// as is the reconnection vertex x_k, with the direction leaving x_k and the radiance arriving
+// along it so that the BSDF at x_k can be re-evaluated for a new predecessor (reconnection shift).
+// Positions are never stored in fp16: barycentrics are f32; radiance is f32 because emitters may
+// exceed fp16's 65504 (the `stiff` scene has 1e6); the confidence weight and time are 16-bit.
+#ifndef STRATA_RESTIR_RESERVOIR_H
+#define STRATA_RESTIR_RESERVOIR_H
+#include "include/lang.h"
+
+STRATA_NAMESPACE_BEGIN
+
+// Field widths of the packed surface point.
+CONST_DEF uint SURFACE_INSTANCE_BITS = 20u;  // instances 0 .. 2^20 - 2 (all ones marks "no surface")
+CONST_DEF uint SURFACE_GEOMETRY_BITS = 12u;  // up to 4,096 primitives per mesh
+CONST_DEF uint SURFACE_LOD_BITS = 4u;        // up to 16 LoD levels
+CONST_DEF uint SURFACE_NONE = 0xFFFFFFFFu;   // instance word of "no surface" (escaped, or unused)
+
+// Path sample flags.
+CONST_DEF uint SAMPLE_VALID = 1u;         // the reservoir holds a sample
+CONST_DEF uint SAMPLE_EMITTER_HIT = 2u;   // the path ends by hitting an emitter (not by NEE)
+CONST_DEF uint SAMPLE_ESCAPED = 4u;       // the path ends in the environment
+CONST_DEF uint SAMPLE_NEE = 8u;           // the last vertex was chosen by next-event estimation
+CONST_DEF uint SAMPLE_XK_IS_LAST = 16u;   // x_k is the path's last vertex (direct lighting at x_{k-1})
+
+struct SurfacePoint {
+  uint instance;   // SURFACE_NONE: no surface
+  uint geometry;   // primitive of the instance's mesh at `lod`
+  uint triangle;
+  vec2 bary;       // barycentrics of vertices 1 and 2 (Vulkan's convention)
+  uint lod;
+};
+
+struct PathSample {
+  SurfacePoint x1;        // primary hit
+  SurfacePoint xk;        // reconnection vertex
+  vec3 xk_direction;      // unit direction leaving x_k towards x_{k+1} (the escape direction if escaped)
+  vec3 xk_radiance;       // radiance arriving at x_k along -xk_direction (emission of x_k excluded)
+  uint k;                 // index of x_k (x0 is the camera); 0 = not reconnectable
+  uint segments;          // number of path segments (path length)
+  uint flags;             // SAMPLE_*
+  uint seed;              // random-replay seed of the hybrid shift (Lin et al. 2022)
+  vec2 lens;              // thin-lens sample in [0,1)^2
+  float time;             // time within the shutter in [0,1)
+};
+
+struct Reservoir {
+  PathSample y;
+  float ucw;         // unbiased contribution weight W_Y (RS-main Eq. 5)
+  float confidence;  // c (RS-main 3.4)
+  float p_hat;       // target function value of y in its own pixel, cached
+};
+
+// 80 bytes: five 16-byte words (DESIGN.md budget: <= 96).
+struct PackedReservoir {
+  uvec4 x1;          // instance|geometry, triangle, bary.x, bary.y
+  uvec4 xk;          // instance|geometry, triangle, bary.x, bary.y
+  uvec4 radiance;    // xk_radiance rgb (f32), packed xk_direction (octahedral snorm16x2)
+  uvec4 weights;     // ucw (f32), p_hat (f32), seed, half2(confidence, time)
+  uvec4 meta;        // k | length << 8 | flags << 16 | lod1 << 24 | lodk << 28, lens (unorm16x2), 0, 0
+};
+
+INLINE SurfacePoint surface_none() {
+  SurfacePoint s;
+  s.instance = SURFACE_NONE;
+  s.geometry = 0u;
+  s.triangle = 0u;
+  s.bary = vec2(0.0f);
+  s.lod = 0u;
+  return s;
+}
+
+// Octahedral map of a unit vector to [-1,1]^2 (Cigolle et al. 2014).
+INLINE vec2 octahedral_encode(vec3 n) {
+  float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+  vec2 p = vec2(n.x, n.y) * (1.0f / max(l1, 1e-20f));
+  if (n.z < 0.0f) {
+    vec2 s = vec2(p.x >= 0.0f ? 1.0f : -1.0f, p.y >= 0.0f ? 1.0f : -1.0f);
+    p = (vec2(1.0f) - abs(vec2(p.y, p.x))) * s;
+  }
+  return p;
+}
+
+INLINE vec3 octahedral_decode(vec2 p) {
+  vec3 n = vec3(p.x, p.y, 1.0f - abs(p.x) - abs(p.y));
+  float t = max(-n.z, 0.0f);
+  n.x += n.x >= 0.0f ? -t : t;
+  n.y += n.y >= 0.0f ? -t : t;
+  return normalize(n);
+}
+
+INLINE uvec4 pack_surface(SurfacePoint s) {
+  uint id = s.instance == SURFACE_NONE ? SURFACE_NONE : (s.instance | (s.geometry << SURFACE_INSTANCE_BITS));
+  return uvec4(id, s.triangle, floatBitsToUint(s.bary.x), floatBitsToUint(s.bary.y));
+}
+
+INLINE SurfacePoint unpack_surface(uvec4 w, uint lod) {
+  SurfacePoint s;
+  if (w.x == SURFACE_NONE) {
+    s = surface_none();
+    return s;
+  }
+  s.instance = w.x & ((1u << SURFACE_INSTANCE_BITS) - 1u);
+  s.geometry = w.x >> SURFACE_INSTANCE_BITS;
+  s.triangle = w.y;
+  s.bary = vec2(uintBitsToFloat(w.z), uintBitsToFloat(w.w));
+  s.lod = lod;
+  return s;
+}
+
+INLINE PackedReservoir pack_reservoir(Reservoir r) {
+  PackedReservoir p;
+  p.x1 = pack_surface(r.y.x1);
+  p.xk = pack_surface(r.y.xk);
+  p.radiance = uvec4(floatBitsToUint(r.y.xk_radiance.x), floatBitsToUint(r.y.xk_radiance.y),
+                     floatBitsToUint(r.y.xk_radiance.z), packSnorm2x16(octahedral_encode(r.y.xk_direction)));
+  p.weights = uvec4(floatBitsToUint(r.ucw), floatBitsToUint(r.p_hat), r.y.seed, packHalf2x16(vec2(r.confidence, r.y.time)));
+  uint meta = (r.y.k & 0xFFu) | ((r.y.segments & 0xFFu) << 8u) | ((r.y.flags & 0xFFu) << 16u) | ((r.y.x1.lod & 0xFu) << 24u) |
+              ((r.y.xk.lod & 0xFu) << 28u);
+  p.meta = uvec4(meta, packUnorm2x16(r.y.lens), 0u, 0u);
+  return p;
+}
+
+INLINE Reservoir unpack_reservoir(PackedReservoir p) {
+  Reservoir r;
+  uint meta = p.meta.x;
+  r.y.x1 = unpack_surface(p.x1, (meta >> 24u) & 0xFu);
+  r.y.xk = unpack_surface(p.xk, (meta >> 28u) & 0xFu);
+  r.y.xk_radiance = vec3(uintBitsToFloat(p.radiance.x), uintBitsToFloat(p.radiance.y), uintBitsToFloat(p.radiance.z));
+  r.y.xk_direction = octahedral_decode(unpackSnorm2x16(p.radiance.w));
+  r.ucw = uintBitsToFloat(p.weights.x);
+  r.p_hat = uintBitsToFloat(p.weights.y);
+  r.y.seed = p.weights.z;
+  vec2 ct = unpackHalf2x16(p.weights.w);
+  r.confidence = ct.x;
+  r.y.time = ct.y;
+  r.y.k = meta & 0xFFu;
+  r.y.segments = (meta >> 8u) & 0xFFu;
+  r.y.flags = (meta >> 16u) & 0xFFu;
+  r.y.lens = unpackUnorm2x16(p.meta.y);
+  return r;
+}
+
+STRATA_NAMESPACE_END
+
+#ifdef __cplusplus
+static_assert(sizeof(strata::gpu::PackedReservoir) == 80, "DESIGN.md section 3: <= 96 bytes per reservoir");
+#endif
+#endif
