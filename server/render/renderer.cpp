@@ -81,6 +81,15 @@ Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSet
 
 Renderer::~Renderer() = default;
 
+std::map<std::string, uint64_t> Renderer::memory_bytes() const {
+  SceneMemory mem = scene_->memory();
+  return {{"geometry", mem.geometry},
+          {"acceleration", mem.acceleration},
+          {"scene_per_frame", mem.per_frame},
+          {"image", accum_.size()},
+          {"frame_constants_and_counters", constants_.size() + counters_.size()}};
+}
+
 Renderer::Variant& Renderer::variant_for(const scene::FrameState& frame) {
   Features f = features_of(scene_->scene(), *scene_, frame);
   auto& slot = variants_[f.key()];
@@ -154,12 +163,7 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
                    {"shadow", counters[gpu::COUNTER_RAYS_SHADOW]}};
   s.paths = counters[gpu::COUNTER_PATHS];
   s.nonfinite_rejected = counters[gpu::COUNTER_NONFINITE_REJECTED];
-  SceneMemory mem = scene_->memory();
-  s.memory_bytes = {{"geometry", mem.geometry},
-                    {"acceleration", mem.acceleration},
-                    {"scene_per_frame", mem.per_frame},
-                    {"image", accum_.size()},
-                    {"frame_constants_and_counters", constants_.size() + counters_.size()}};
+  s.memory_bytes = memory_bytes();
   s.tlas_builds = scene_->tlas().builds() - tlas_builds_before;
   s.tlas_refits = scene_->tlas().refits() - tlas_refits_before;
   std::string nee = std::to_string(scene_->emitter_count()) + " emissive triangles" +

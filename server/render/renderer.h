@@ -54,6 +54,9 @@ class Renderer {
   // one frame state); the caller keeps the frame state unchanged while accumulating.
   FrameResult render(const scene::FrameState& frame, uint32_t frame_index, bool accumulate = false);
 
+  // Device memory held for this renderer, by buffer group (what FrameStats::memory_bytes reports).
+  std::map<std::string, uint64_t> memory_bytes() const;
+
   const RenderSettings& settings() const { return settings_; }
   const GpuScene& gpu_scene() const { return *scene_; }
 

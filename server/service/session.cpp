@@ -20,18 +20,6 @@ void set_time(google::protobuf::Timestamp* t, std::chrono::system_clock::time_po
   t->set_nanos(int32_t(ns % 1'000'000'000));
 }
 
-// Device memory of a renderer that has not rendered yet, under the buffer groups that its frames
-// report (FrameStats::memory_bytes); the first frame's report replaces it.
-std::map<std::string, uint64_t> memory_before_first_frame(const render::Renderer& r) {
-  const render::SceneMemory m = r.gpu_scene().memory();
-  const auto& s = r.settings();
-  return {{"geometry", m.geometry},
-          {"acceleration", m.acceleration},
-          {"scene_per_frame", m.per_frame},
-          {"image", uint64_t(sizeof(glm::vec4)) * s.width * s.height},
-          {"frame_constants_and_counters", sizeof(gpu::GpuFrameConstants) + sizeof(uint32_t) * gpu::COUNTER_COUNT}};
-}
-
 }  // namespace
 
 Session::Session(std::string name, std::shared_ptr<const scene::Scene> scene, SessionSpec spec, const gpu::Context& ctx,
@@ -61,7 +49,7 @@ Session::~Session() = default;
 
 void Session::create_renderer_locked() {
   auto r = std::make_unique<render::Renderer>(ctx_, *scene_, settings_);
-  auto memory = memory_before_first_frame(*r);
+  auto memory = r->memory_bytes();
   renderer_ = std::move(r);
   std::lock_guard lock(mu_);
   memory_ = std::move(memory);
