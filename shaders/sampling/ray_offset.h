@@ -14,9 +14,11 @@ CONST_DEF float RAY_OFFSET_INT_SCALE = 256.0f;
 CONST_DEF float SHADOW_RAY_SHORTEN = 1e-4f;
 
 INLINE float offset_component(float p, float n) {
+  // Near the origin a float offset; elsewhere a few ulps in integer space. The integer path only
+  // runs for |p| >= 1/32, whose bit patterns are far from INT_MIN/INT_MAX (no overflow, even as C++).
+  if (abs(p) < RAY_OFFSET_ORIGIN) return p + RAY_OFFSET_FLOAT_SCALE * n;
   int of_i = int(RAY_OFFSET_INT_SCALE * n);
-  float p_i = intBitsToFloat(floatBitsToInt(p) + (p < 0.0f ? -of_i : of_i));
-  return abs(p) < RAY_OFFSET_ORIGIN ? p + RAY_OFFSET_FLOAT_SCALE * n : p_i;
+  return intBitsToFloat(floatBitsToInt(p) + (p < 0.0f ? -of_i : of_i));
 }
 
 // p: hit position, n: geometric normal on the side the new ray leaves from.
