@@ -1,5 +1,6 @@
 // Names of the built-in scenes and load_scene, the one entry point for "name or path".
 #include <array>
+#include <filesystem>
 #include <utility>
 
 #include "scene/builtin/builtins.h"
@@ -54,6 +55,15 @@ Scene builtin_scene(const std::string& name) {
 
 Scene load_scene(const std::string& name_or_path, const LoadLimits& limits) {
   if (is_builtin_scene(name_or_path)) return builtin_scene(name_or_path);
+  // Something that is neither a built-in name nor a glTF path was most likely a mistyped name.
+  const std::filesystem::path path(name_or_path);
+  const std::string ext = path.extension().string();
+  if (ext != ".gltf" && ext != ".glb" && !std::filesystem::exists(path)) {
+    std::string names;
+    for (const auto& n : builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
+    throw SceneError("scene '" + name_or_path + "' is neither a built-in scene (" + names +
+                     ") nor a .gltf/.glb file");
+  }
   return load_gltf_file(name_or_path, limits);
 }
 
