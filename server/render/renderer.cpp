@@ -2,48 +2,16 @@
 
 #include <algorithm>
 
-#include "include/bindings.h"
 #include "render/frame_constants.h"
 
 namespace strata::render {
 namespace {
-
-std::vector<gpu::Binding> path_trace_bindings() {
-  auto b = GpuScene::bindings(/*with_lights=*/true);
-  b.push_back({BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER});
-  b.push_back({BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-  b.push_back({BINDING_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-  return b;
-}
-
-// The parts of the path tracer a frame needs, as specialization constants.
-struct Features {
-  bool thin_lens, env_nee, emitters;
-  uint32_t key() const { return uint32_t(thin_lens) | uint32_t(env_nee) << 1 | uint32_t(emitters) << 2; }
-};
-
-Features features_of(const scene::Scene& scene, const GpuScene& gs, const scene::FrameState& frame) {
-  bool env = glm::any(glm::greaterThan(scene.environment.radiance, glm::vec3(0.0f)));
-  return {frame.camera.aperture > 0.0f, env, gs.has_emitters()};
-}
 
 void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
 }  // namespace
-
-struct Renderer::Variant {
-  Features features;
-  gpu::ComputePipeline pipeline;
-  gpu::DescriptorSet set;
-  Variant(const gpu::Context& ctx, Features f)
-      : features(f),
-        pipeline(ctx, "path_trace", path_trace_bindings(),
-                 std::vector<gpu::SpecConstant>{{SPEC_THIN_LENS, f.thin_lens}, {SPEC_ENV_NEE, f.env_nee}, {SPEC_EMITTERS, f.emitters}},
-                 sizeof(gpu::GpuDispatchConstants)),
-        set(ctx, pipeline) {}
-};
 
 void RenderSettings::validate() const {
   auto in = [](uint64_t v, uint64_t lo, uint64_t hi) { return v >= lo && v <= hi; };
@@ -68,6 +36,7 @@ void RenderSettings::validate() const {
 
 std::vector<std::string> available_methods() { return {"pt"}; }
 
+
 Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSettings settings)
     : ctx_(ctx), settings_(std::move(settings)) {
   settings_.validate();
@@ -77,30 +46,20 @@ Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSet
   counters_ = gpu::Buffer(ctx, sizeof(uint32_t) * gpu::COUNTER_COUNT, gpu::k_storage_usage, gpu::Memory::Device, "counters");
   accum_ = gpu::Buffer(ctx, sizeof(glm::vec4) * pixels, gpu::k_storage_usage, gpu::Memory::Device, "accumulation");
   timer_ = std::make_unique<gpu::PassTimer>(ctx, 8);
+  method_ = make_method(settings_, SharedResources{ctx, *scene_, constants_, counters_, accum_});
 }
 
 Renderer::~Renderer() = default;
 
 std::map<std::string, uint64_t> Renderer::memory_bytes() const {
   SceneMemory mem = scene_->memory();
-  return {{"geometry", mem.geometry},
-          {"acceleration", mem.acceleration},
-          {"scene_per_frame", mem.per_frame},
-          {"image", accum_.size()},
-          {"frame_constants_and_counters", constants_.size() + counters_.size()}};
-}
-
-Renderer::Variant& Renderer::variant_for(const scene::FrameState& frame) {
-  Features f = features_of(scene_->scene(), *scene_, frame);
-  auto& slot = variants_[f.key()];
-  if (!slot) {
-    slot = std::make_unique<Variant>(ctx_, f);
-    scene_->bind(slot->set, /*with_lights=*/true);
-    slot->set.bind_buffer(BINDING_FRAME, constants_);
-    slot->set.bind_buffer(BINDING_COUNTERS, counters_);
-    slot->set.bind_buffer(BINDING_ACCUM, accum_);
-  }
-  return *slot;
+  std::map<std::string, uint64_t> m = {{"geometry", mem.geometry},
+                                       {"acceleration", mem.acceleration},
+                                       {"scene_per_frame", mem.per_frame},
+                                       {"image", accum_.size()},
+                                       {"frame_constants_and_counters", constants_.size() + counters_.size()}};
+  for (const auto& [group, bytes] : method_->memory_bytes()) m[group] += bytes;
+  return m;
 }
 
 FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_index, bool accumulate) {
@@ -112,7 +71,8 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
     if (frame.lods[i] >= sc.instances[i].lod_meshes.size())
       throw std::invalid_argument("lods[" + std::to_string(i) + "] = " + std::to_string(frame.lods[i]) + " but instance has " +
                                   std::to_string(sc.instances[i].lod_meshes.size()) + " levels");
-  Variant& v = variant_for(frame);
+  // The environment is sampled by NEE whenever it emits (a scene property, the same every frame).
+  const bool env_nee = glm::any(glm::greaterThan(sc.environment.radiance, glm::vec3(0.0f)));
   if (!accumulate) accumulated_spp_ = 0;
   uint32_t tlas_builds_before = scene_->tlas().builds(), tlas_refits_before = scene_->tlas().refits();
 
@@ -126,17 +86,11 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
     timer_->end(cmd);
 
     FrameSetup setup{settings_.width, settings_.height, frame_index, settings_.seed, settings_.spp, settings_.max_depth,
-                     v.features.env_nee};
+                     env_nee};
     gpu::GpuFrameConstants c = make_frame_constants(frame, sc.environment, *scene_, setup);
     constants_.upload(&c, sizeof c);
 
-    timer_->begin(cmd, "path_trace");
-    for (uint32_t done = 0; done < settings_.spp; done += settings_.samples_per_dispatch) {
-      gpu::GpuDispatchConstants d{uint32_t(accumulated_spp_) + done, std::min(settings_.samples_per_dispatch, settings_.spp - done)};
-      gpu::dispatch_2d(cmd, v.pipeline, v.set, settings_.width, settings_.height, &d, sizeof d);
-      gpu::compute_barrier(cmd);
-    }
-    timer_->end(cmd);
+    method_->record(cmd, *timer_, MethodFrame{frame, frame_index, accumulated_spp_, env_nee});
   });
   accumulated_spp_ += settings_.spp;
 
@@ -166,16 +120,8 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
   s.memory_bytes = memory_bytes();
   s.tlas_builds = scene_->tlas().builds() - tlas_builds_before;
   s.tlas_refits = scene_->tlas().refits() - tlas_refits_before;
-  std::string nee = std::to_string(scene_->emitter_count()) + " emissive triangles" +
-                    (v.features.env_nee ? " + environment" : "") + (v.features.thin_lens ? ", thin lens" : ", pinhole");
-  s.passes = {{"update", true, s.tlas_refits ? "TLAS refit (transforms only)" : "TLAS build"},
-              {"path_trace", true, "method pt: NEE over " + nee},
-              {"primary", false, "method pt has no reuse"},
-              {"domain_init", false, "method pt has no reuse"},
-              {"initial", false, "method pt has no reuse"},
-              {"temporal", false, "method pt has no reuse"},
-              {"spatial", false, "method pt has no reuse"},
-              {"shade", false, "path_trace writes radiance directly"}};
+  s.passes = {{"update", true, s.tlas_refits ? "TLAS refit (transforms only)" : "TLAS build"}};
+  for (auto& d : method_->decisions()) s.passes.push_back(std::move(d));
   return r;
 }
 

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "gpu/pipeline.h"
 #include "gpu/timer.h"
 #include "image/image.h"
 #include "render/frame_stats.h"
+#include "render/method.h"
 #include "render/scene_gpu.h"
 
 namespace strata::render {
@@ -61,14 +61,12 @@ class Renderer {
   const GpuScene& gpu_scene() const { return *scene_; }
 
  private:
-  struct Variant;
-  Variant& variant_for(const scene::FrameState& frame);
   const gpu::Context& ctx_;
   RenderSettings settings_;
   std::unique_ptr<GpuScene> scene_;
   gpu::Buffer constants_, counters_, accum_;
   std::unique_ptr<gpu::PassTimer> timer_;
-  std::map<uint32_t, std::unique_ptr<Variant>> variants_;  // by specialization key
+  std::unique_ptr<Method> method_;
   uint64_t accumulated_spp_ = 0;
 };
 

@@ -1,0 +1,50 @@
+#pragma once
+// A rendering method records its passes into a frame after the scene update. The Renderer owns
+// what every method shares (the scene on the device, frame constants, counters, the radiance
+// accumulation buffer, the pass timer); a method owns its pipelines and per-session state, and
+// allocates nothing that it does not use (DESIGN.md section 2).
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gpu/pipeline.h"
+#include "gpu/timer.h"
+#include "render/frame_stats.h"
+#include "render/scene_gpu.h"
+
+namespace strata::render {
+
+struct RenderSettings;
+
+// Resources the Renderer owns and every method binds.
+struct SharedResources {
+  const gpu::Context& ctx;
+  const GpuScene& scene;
+  const gpu::Buffer& constants;  // GpuFrameConstants (uniform)
+  const gpu::Buffer& counters;   // COUNTER_* slots
+  const gpu::Buffer& accum;      // per pixel: rgb radiance sum, a = sample count
+};
+
+struct MethodFrame {
+  const scene::FrameState& frame;
+  uint32_t frame_index;
+  uint64_t sample_base;  // samples already accumulated for this frame state
+  bool env_nee;          // the environment is sampled by next-event estimation
+};
+
+class Method {
+ public:
+  virtual ~Method() = default;
+  // Records this frame's passes, each inside timer.begin/end, adding radiance to `accum`.
+  virtual void record(VkCommandBuffer cmd, gpu::PassTimer& timer, const MethodFrame& f) = 0;
+  // Which passes of DESIGN.md section 2 ran in the last recorded frame, and why others did not.
+  virtual std::vector<PassDecision> decisions() const = 0;
+  // Device memory the method itself holds, by buffer group.
+  virtual std::map<std::string, uint64_t> memory_bytes() const = 0;
+};
+
+std::unique_ptr<Method> make_method(const RenderSettings& settings, const SharedResources& shared);
+
+}  // namespace strata::render
