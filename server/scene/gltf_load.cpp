@@ -6,6 +6,7 @@
 #include "scene/gltf_extras.h"
 #include "scene/gltf_read.h"
 #include "scene/scene_io.h"
+#include "scene/triangle_order.h"
 
 namespace strata::scene {
 namespace {
@@ -36,6 +37,7 @@ Scene convert(const tinygltf::Model& model, const std::string& label,
   } catch (const SceneError& e) {
     throw SceneError(label + ": " + e.what());
   }
+  sort_triangles_spatially(scene);
   return scene;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "scene/animation.h"
+#include "scene/triangle_order.h"
 #include "scene/transform.h"
 
 namespace strata::scene::builtin {
@@ -89,6 +90,7 @@ Scene SceneBuilder::finish() {
   std::stable_sort(
       tracks.begin(), tracks.end(),
       [](const InstanceTrack& a, const InstanceTrack& b) { return a.instance < b.instance; });
+  sort_triangles_spatially(scene_);
   return std::move(scene_);
 }
 
