@@ -18,6 +18,7 @@
 #include "frame_files.h"
 #include "progress.h"
 #include "strata/v1/render.grpc.pb.h"
+#include "util/summary.h"
 
 namespace strata::client {
 namespace {
@@ -84,21 +85,6 @@ v1::CreateSessionRequest make_request(const StreamArgs& a) {
   return req;
 }
 
-struct LatencySummary {
-  double mean = 0, p50 = 0, p95 = 0, max = 0;
-};
-
-LatencySummary summarize(std::vector<double> v) {
-  LatencySummary s;
-  if (v.empty()) return s;
-  std::sort(v.begin(), v.end());
-  for (double x : v) s.mean += x;
-  s.mean /= double(v.size());
-  s.p50 = v[v.size() / 2];
-  s.p95 = v[std::min(v.size() - 1, size_t(double(v.size()) * 0.95))];
-  s.max = v.back();
-  return s;
-}
 
 int run_stream(const StreamArgs& a) {
   const auto script = a.camera_path.empty() ? std::vector<v1::FrameInput>{} : load_camera_path(a.camera_path);
@@ -182,7 +168,7 @@ int run_stream(const StreamArgs& a) {
     throw RpcError("Stream", st);
   }
   const double wall = ms_since(start) / 1000.0;
-  const LatencySummary lat = summarize(latencies);
+  const util::Summary lat = util::summarize(latencies);
   doc["summary"] = {{"frames_received", received}, {"inputs_sent", sent}, {"frames_dropped", dropped},
                     {"inputs_coalesced", coalesced}, {"wall_s", wall}, {"fps", double(received) / wall},
                     {"latency_ms", {{"mean", lat.mean}, {"p50", lat.p50}, {"p95", lat.p95}, {"max", lat.max}}},

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "util/summary.h"
 #include "gpu/context.h"
 #include "render/ray_benchmark.h"
 #include "render/renderer.h"
@@ -35,10 +36,7 @@ std::vector<std::string> split(const std::string& s) {
   return out;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+double median(std::vector<double> v) { return util::summarize(std::move(v)).p50; }
 
 int run_bench(const BenchArgs& a) {
   gpu::Context ctx({a.device, false});

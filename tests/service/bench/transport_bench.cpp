@@ -23,6 +23,7 @@
 #include "service/input_checks.h"
 #include "service/server.h"
 #include "strata/v1/render.grpc.pb.h"
+#include "util/summary.h"
 
 namespace {
 
@@ -36,20 +37,8 @@ struct Args {
   std::string device;
 };
 
-struct Stats {
-  double mean = 0, p50 = 0, p95 = 0;
-};
-
-Stats stats_of(std::vector<double> v) {
-  Stats s;
-  if (v.empty()) return s;
-  std::sort(v.begin(), v.end());
-  for (double x : v) s.mean += x;
-  s.mean /= double(v.size());
-  s.p50 = v[v.size() / 2];
-  s.p95 = v[std::min(v.size() - 1, size_t(double(v.size()) * 0.95))];
-  return s;
-}
+using Stats = strata::util::Summary;
+Stats stats_of(std::vector<double> v) { return strata::util::summarize(std::move(v)); }
 
 nlohmann::json to_json(const Stats& s) { return {{"mean", s.mean}, {"p50", s.p50}, {"p95", s.p95}}; }
 
