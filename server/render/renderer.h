@@ -25,6 +25,22 @@ struct RenderLimits {
   static constexpr uint32_t max_depth = 256;
 };
 
+// Options of the ReSTIR methods (DESIGN.md section 2); `pt` ignores them.
+struct RestirOptions {
+  std::string shift = "hybrid";      // reconnection | hybrid (random replay until a reconnectable vertex)
+  std::string mis = "pairwise";      // balance | pairwise (spatial reuse; the temporal pair is the same for both)
+  bool unbiased = true;              // false: the DI tutorial's confidence-only temporal weights (biased)
+  bool temporal = true;              // temporal reuse (gather: backprojection)
+  bool spatial = true;               // spatial reuse
+  float confidence_cap = 20.0f;      // c_cap of the temporal history
+  uint32_t spatial_neighbors = 1;    // N
+  float spatial_radius = 30.0f;      // pixels
+  uint32_t initial_candidates = 1;   // N_init paths per pixel for the canonical sample
+  uint32_t light_candidates = 1;     // NEE samples per path vertex (the DI tutorial uses 32 at x1)
+  bool direct_lighting = false;      // ReSTIR DI: paths of one bounce (camera, x1, light)
+  void validate() const;
+};
+
 struct RenderSettings {
   uint32_t width = 256;
   uint32_t height = 256;
@@ -33,6 +49,7 @@ struct RenderSettings {
   uint32_t max_depth = 16;              // path segments after the camera
   uint32_t seed = 0;
   uint32_t samples_per_dispatch = 16;   // a frame's samples are split into dispatches of this many
+  RestirOptions restir;
   void validate() const;
 };
 

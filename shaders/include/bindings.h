@@ -15,6 +15,12 @@
 #define BINDING_ACCUM 10
 #define BINDING_PROBE_RAYS 11  // ray_probe pass: rays in
 #define BINDING_PROBE_HITS 12  // ray_probe pass: hits out
+#define BINDING_TLAS_PREV 13       // the previous frame's TLAS (methods with temporal reuse)
+#define BINDING_INSTANCES_PREV 14  // the previous frame's instance records
+#define BINDING_RESTIR 15          // GpuRestirConstants (uniform)
+#define BINDING_RESERVOIRS_IN 16   // reservoirs a pass reads at other pixels (history, neighbours)
+#define BINDING_RESERVOIRS_OUT 17  // reservoirs a pass writes (and reads at its own pixel)
+#define BINDING_CONTRIBUTION 18    // per pixel: f(Y) of the reservoir at that pixel, in its domain
 
 // Specialization constants of the passes (constant_id).
 #define SPEC_THIN_LENS 0

@@ -26,9 +26,22 @@ struct GpuFrameConstants {
   uint emitter_count;
   float total_emitter_power;
   float env_select_prob;     // probability that NEE picks the environment instead of an emitter
-  uint pad0;
+  uint history_flags;        // HISTORY_*: what the previous frame's state (below) may be used for
   uint pad1;
+  // The previous frame (DESIGN.md section 3, session state), in the previous frame's render space:
+  // its camera, and its light-selection totals so that target functions and MIS weights of
+  // reverse shifts are evaluated exactly as that frame's passes evaluated them.
+  GpuCamera prev_camera;
+  float prev_total_emitter_power;
+  float prev_env_select_prob;
+  uint prev_width;
+  uint prev_height;
 };
+
+// history_flags bits.
+CONST_DEF uint HISTORY_VALID = 1u;         // a previous frame exists (TLAS, instances and camera bound)
+CONST_DEF uint HISTORY_SCENE_MOVED = 2u;   // some instance transform or LoD level changed since then
+CONST_DEF uint HISTORY_CAMERA_MOVED = 4u;  // the camera changed since then
 
 // Push constants of a dispatch: a frame's samples may be split over several dispatches.
 struct GpuDispatchConstants {
@@ -47,6 +60,6 @@ CONST_DEF uint COUNTER_COUNT = 8u;
 STRATA_NAMESPACE_END
 
 #ifdef __cplusplus
-static_assert(sizeof(strata::gpu::GpuFrameConstants) == 128);
+static_assert(sizeof(strata::gpu::GpuFrameConstants) == 208);
 #endif
 #endif
