@@ -10,7 +10,8 @@ Progress::Progress(uint64_t total, bool terminal) : total_(total), terminal_(ter
 
 bool Progress::stderr_is_terminal() { return isatty(STDERR_FILENO) == 1; }
 
-void Progress::frame(uint64_t done, uint64_t frame_index, double latency_ms, double gpu_ms, uint64_t dropped) {
+void Progress::frame(uint64_t done, uint64_t frame_index, double latency_ms, double gpu_ms, uint64_t dropped,
+                     const std::string& detail) {
   ++count_;
   latency_sum_ += latency_ms;
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -24,9 +25,10 @@ void Progress::frame(uint64_t done, uint64_t frame_index, double latency_ms, dou
                  static_cast<unsigned long long>(done), static_cast<unsigned long long>(total_), fps, latency_ms,
                  latency_sum_ / double(count_), gpu_ms);
   } else {
-    std::fprintf(stderr, "frame %llu/%llu  index %llu  latency %.1f ms  gpu %.1f ms  dropped %llu  %.1f fps\n",
+    std::fprintf(stderr, "frame %llu/%llu  index %llu  latency %.1f ms  gpu %.1f ms  dropped %llu  %.1f fps%s%s\n",
                  static_cast<unsigned long long>(done), static_cast<unsigned long long>(total_),
-                 static_cast<unsigned long long>(frame_index), latency_ms, gpu_ms, static_cast<unsigned long long>(dropped), fps);
+                 static_cast<unsigned long long>(frame_index), latency_ms, gpu_ms, static_cast<unsigned long long>(dropped), fps,
+                 detail.empty() ? "" : "  ", detail.c_str());
   }
   std::fflush(stderr);
 }

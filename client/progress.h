@@ -12,8 +12,10 @@ class Progress {
   Progress(uint64_t total, bool terminal);
   static bool stderr_is_terminal();
   // One received frame: inputs answered so far (`done` of the total), its index, the latency from
-  // sending its input, its GPU time, frames dropped before it.
-  void frame(uint64_t done, uint64_t frame_index, double latency_ms, double gpu_ms, uint64_t dropped);
+  // sending its input, its GPU time, frames dropped before it, and a detail line (reuse
+  // statistics; shown in plain-line mode, empty for none).
+  void frame(uint64_t done, uint64_t frame_index, double latency_ms, double gpu_ms, uint64_t dropped,
+             const std::string& detail = "");
   void finish();
 
  private:

@@ -42,6 +42,15 @@ struct StreamArgs {
   double timeout_s = 600.0;
   bool keep_session = false;
   bool frames_given = false;
+  // ReSTIR options (restir-* methods): sent only when given, so that the server's defaults apply.
+  struct Restir {
+    std::string shift, mis;  // empty: not given
+    float confidence_cap = 0.0f, spatial_radius = 0.0f;
+    uint32_t spatial_neighbors = 0, initial_candidates = 0, light_candidates = 0;
+    bool no_temporal = false, no_spatial = false, biased = false;
+    bool confidence_cap_given = false, spatial_radius_given = false, spatial_neighbors_given = false;
+    bool initial_candidates_given = false, light_candidates_given = false;
+  } restir;
 };
 
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
@@ -58,6 +67,23 @@ std::vector<v1::ImageEncoding> parse_encodings(const std::string& list) {
   }
   if (out.empty()) throw std::runtime_error("--encodings is empty");
   return out;
+}
+
+void set_restir_options(const StreamArgs::Restir& r, v1::RenderOptions& o) {
+  if (r.shift == "reconnection") o.set_shift(v1::SHIFT_RECONNECTION);
+  else if (r.shift == "hybrid") o.set_shift(v1::SHIFT_HYBRID);
+  else if (!r.shift.empty()) throw std::runtime_error("--shift: '" + r.shift + "' is not one of reconnection, hybrid");
+  if (r.mis == "balance") o.set_mis(v1::MIS_BALANCE);
+  else if (r.mis == "pairwise") o.set_mis(v1::MIS_PAIRWISE);
+  else if (!r.mis.empty()) throw std::runtime_error("--mis: '" + r.mis + "' is not one of balance, pairwise");
+  if (r.confidence_cap_given) o.set_confidence_cap(r.confidence_cap);
+  if (r.spatial_neighbors_given) o.set_spatial_neighbors(r.spatial_neighbors);
+  if (r.spatial_radius_given) o.set_spatial_radius(r.spatial_radius);
+  if (r.initial_candidates_given) o.set_initial_candidates(r.initial_candidates);
+  if (r.light_candidates_given) o.set_light_candidates(r.light_candidates);
+  if (r.no_temporal) o.set_temporal_reuse(false);
+  if (r.no_spatial) o.set_spatial_reuse(false);
+  if (r.biased) o.set_unbiased(false);
 }
 
 v1::CreateSessionRequest make_request(const StreamArgs& a) {
@@ -81,8 +107,33 @@ v1::CreateSessionRequest make_request(const StreamArgs& a) {
   req.mutable_options()->set_spp(a.spp);
   if (a.max_depth) req.mutable_options()->set_max_depth(a.max_depth);
   req.mutable_options()->set_exposure(a.exposure);
+  set_restir_options(a.restir, *req.mutable_options());
   for (auto e : parse_encodings(a.encodings)) req.add_encodings(e);
   return req;
+}
+
+// One line of a frame's reuse statistics for the log: the counters, then the shift failures
+// summed by pass ("temporal", "spatial"); empty when the frame has none (pt).
+std::string reuse_line(const v1::FrameStatistics& st) {
+  if (!st.has_reuse()) return "";
+  const auto& r = st.reuse();
+  std::map<std::string, uint64_t> counters, failures;  // ordered by name
+  for (const auto& [key, n] : r.counters()) counters[key] = n;
+  for (const auto& [key, n] : r.shift_failures()) failures[key.substr(0, key.find('.'))] += n;
+  std::string line = "reuse";
+  for (const auto& [key, n] : counters) line += " " + key + "=" + std::to_string(n);
+  for (const auto& [pass, n] : failures) line += " " + pass + ".failures=" + std::to_string(n);
+  return line;
+}
+
+// Adds a frame's reuse statistics to `totals` (counters and shift failures by key).
+void add_reuse(const v1::FrameStatistics& st, nlohmann::json& totals) {
+  if (!st.has_reuse()) return;
+  auto add = [](nlohmann::json& into, const std::string& key, uint64_t n) {
+    into[key] = (into.contains(key) ? into[key].get<uint64_t>() : 0) + n;
+  };
+  for (const auto& [key, n] : st.reuse().counters()) add(totals["counters"], key, n);
+  for (const auto& [key, n] : st.reuse().shift_failures()) add(totals["shift_failures"], key, n);
 }
 
 
@@ -132,6 +183,7 @@ int run_stream(const StreamArgs& a) {
   std::map<uint64_t, Clock::time_point> sent_at;
   std::vector<double> latencies;
   uint64_t sent = 0, acked = 0, received = 0, dropped = 0, coalesced = 0;
+  nlohmann::json reuse_totals = nlohmann::json::object();
   const auto start = Clock::now();
   bool stream_ok = true;
   while (acked < frames) {
@@ -155,10 +207,12 @@ int run_stream(const StreamArgs& a) {
     dropped += frame.frames_dropped();
     coalesced += frame.inputs_coalesced();
     latencies.push_back(latency);
-    nlohmann::json j = write_frame(frame, a.out, a.exposure);
+    nlohmann::json j = write_frame(frame, a.out, a.exposure);  // statistics.reuse included when present
     j["client"] = {{"latency_ms", latency}, {"received_s", ms_since(start) / 1000.0}};
     doc["frames"].push_back(std::move(j));
-    progress.frame(acked, frame.frame_index(), latency, frame.gpu_ms_total(), frame.frames_dropped());
+    add_reuse(frame.statistics(), reuse_totals);
+    progress.frame(acked, frame.frame_index(), latency, frame.gpu_ms_total(), frame.frames_dropped(),
+                   reuse_line(frame.statistics()));
   }
   progress.finish();
   stream->WritesDone();
@@ -173,6 +227,7 @@ int run_stream(const StreamArgs& a) {
                     {"inputs_coalesced", coalesced}, {"wall_s", wall}, {"fps", double(received) / wall},
                     {"latency_ms", {{"mean", lat.mean}, {"p50", lat.p50}, {"p95", lat.p95}, {"max", lat.max}}},
                     {"in_flight", a.in_flight}};
+  if (!reuse_totals.empty()) doc["summary"]["reuse"] = std::move(reuse_totals);  // summed over the frames received
   if (!a.keep_session) {
     grpc::ClientContext ctx;
     set_deadline(ctx, std::chrono::seconds(30));
@@ -197,7 +252,8 @@ Runner add_stream_command(CLI::App& app) {
   cmd->add_option("--scene", a->scene, "built-in scene name")->capture_default_str();
   cmd->add_option("--scene-file", a->scene_file, "a local .glb file, sent inline");
   cmd->add_option("--scene-path", a->scene_path, "a .gltf/.glb file in the server's --scene-dir");
-  cmd->add_option("--method", a->method, "rendering method")->capture_default_str();
+  cmd->add_option("--method", a->method, "rendering method: pt, restir-gather, restir-di (the server's status lists those available)")
+      ->capture_default_str();
   cmd->add_option("--width", a->width, "image width")->capture_default_str();
   cmd->add_option("--height", a->height, "image height")->capture_default_str();
   auto* frames = cmd->add_option("--frames", a->frames, "frames to stream (default: the camera path's length)")->capture_default_str();
@@ -212,8 +268,27 @@ Runner add_stream_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--timeout", a->timeout_s, "seconds for the whole stream")->capture_default_str();
   cmd->add_flag("--keep-session", a->keep_session, "do not delete the session at the end");
-  return [a, frames] {
+  // ReSTIR options (restir-* methods; pt accepts them and the session reports them as not applying).
+  auto& r = a->restir;
+  cmd->add_option("--shift", r.shift, "ReSTIR shift mapping: reconnection | hybrid (default: the server's, hybrid)")
+      ->check(CLI::IsMember({"reconnection", "hybrid"}));
+  cmd->add_option("--mis", r.mis, "ReSTIR spatial MIS weights: balance | pairwise (default: the server's, pairwise)")
+      ->check(CLI::IsMember({"balance", "pairwise"}));
+  auto* cap = cmd->add_option("--confidence-cap", r.confidence_cap, "ReSTIR confidence cap of the temporal history (1..1000; default 20)");
+  auto* neighbors = cmd->add_option("--spatial-neighbors", r.spatial_neighbors, "ReSTIR spatial neighbours per pixel (0..8; default 1)");
+  auto* radius = cmd->add_option("--spatial-radius", r.spatial_radius, "ReSTIR spatial radius in pixels (1..256; default 30)");
+  auto* initial = cmd->add_option("--initial-candidates", r.initial_candidates, "ReSTIR candidate paths per pixel (1..64; default 1)");
+  auto* lights = cmd->add_option("--light-candidates", r.light_candidates, "ReSTIR NEE samples per path vertex (1..32; default 1)");
+  cmd->add_flag("--no-temporal", r.no_temporal, "ReSTIR: no temporal reuse");
+  cmd->add_flag("--no-spatial", r.no_spatial, "ReSTIR: no spatial reuse");
+  cmd->add_flag("--biased", r.biased, "ReSTIR: confidence-only temporal weights, as in the DI tutorial (biased)");
+  return [a, frames, cap, neighbors, radius, initial, lights] {
     a->frames_given = frames->count() > 0;
+    a->restir.confidence_cap_given = cap->count() > 0;
+    a->restir.spatial_neighbors_given = neighbors->count() > 0;
+    a->restir.spatial_radius_given = radius->count() > 0;
+    a->restir.initial_candidates_given = initial->count() > 0;
+    a->restir.light_candidates_given = lights->count() > 0;
     return run_stream(*a);
   };
 }

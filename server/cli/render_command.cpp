@@ -88,6 +88,17 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_option("--max-depth", a->settings.max_depth, "maximum path segments")->capture_default_str();
   cmd->add_option("--seed", a->settings.seed, "random seed")->capture_default_str();
   cmd->add_option("--out", a->out, "output directory")->capture_default_str();
+  auto& r = a->settings.restir;
+  cmd->add_option("--shift", r.shift, "ReSTIR shift: reconnection | hybrid")->capture_default_str();
+  cmd->add_option("--mis", r.mis, "ReSTIR spatial MIS: balance | pairwise")->capture_default_str();
+  cmd->add_option("--confidence-cap", r.confidence_cap, "ReSTIR confidence cap of the temporal history")->capture_default_str();
+  cmd->add_option("--spatial-neighbors", r.spatial_neighbors, "ReSTIR spatial neighbours (0..8)")->capture_default_str();
+  cmd->add_option("--spatial-radius", r.spatial_radius, "ReSTIR spatial radius in pixels")->capture_default_str();
+  cmd->add_option("--initial-candidates", r.initial_candidates, "ReSTIR candidate paths per pixel")->capture_default_str();
+  cmd->add_option("--light-candidates", r.light_candidates, "ReSTIR NEE samples per vertex")->capture_default_str();
+  cmd->add_flag("!--no-temporal", r.temporal, "ReSTIR: no temporal reuse");
+  cmd->add_flag("!--no-spatial", r.spatial, "ReSTIR: no spatial reuse");
+  cmd->add_flag("!--biased", r.unbiased, "ReSTIR: the DI tutorial's confidence-weighted temporal merge (biased)");
   cmd->add_option("--device", a->device, "Vulkan device name substring (default: $STRATA_DEVICE, else lavapipe)");
   cmd->add_option("--exposure", a->exposure, "PNG preview exposure in stops")->capture_default_str();
   cmd->add_flag("--accumulate", a->accumulate, "accumulate all frames into one reference image of --first-frame");

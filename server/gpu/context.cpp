@@ -89,9 +89,17 @@ Context::Context(const ContextOptions& options) {
   create_device();
 }
 
+std::shared_ptr<void> Context::cached_pipeline(const std::string& key, const std::function<std::shared_ptr<void>()>& make) const {
+  std::lock_guard lock(pipelines_mutex_);
+  auto& slot = pipelines_[key];
+  if (!slot) slot = make();
+  return slot;
+}
+
 Context::~Context() {
   if (device_) {
     vkDeviceWaitIdle(device_);
+    pipelines_.clear();  // they need the device
     vkDestroyCommandPool(device_, command_pool_, nullptr);
     vkDestroyDevice(device_, nullptr);
   }

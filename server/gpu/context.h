@@ -4,6 +4,8 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -66,7 +68,14 @@ class Context {
   // Records with `record` into a fresh command buffer, submits, and waits.
   void submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const;
 
+  // Compiled pipelines shared by every user of this context for its lifetime (gpu/pipeline.cpp):
+  // a pipeline is compiled once per process, which matters where compiling is slow (lavapipe
+  // compiles a ray-query shader with LLVM for seconds). Keyed by shader, layout and constants.
+  std::shared_ptr<void> cached_pipeline(const std::string& key, const std::function<std::shared_ptr<void>()>& make) const;
+
  private:
+  mutable std::mutex pipelines_mutex_;
+  mutable std::map<std::string, std::shared_ptr<void>> pipelines_;
   static VkBool32 VKAPI_PTR debug_callback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                            VkDebugUtilsMessageTypeFlagsEXT types,
                                            const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);

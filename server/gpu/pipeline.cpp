@@ -9,55 +9,65 @@ namespace strata::gpu {
 
 ComputePipeline::ComputePipeline(const Context& ctx, std::string shader, std::span<const Binding> bindings,
                                  std::span<const SpecConstant> spec, uint32_t push_constant_bytes)
-    : ctx_(ctx), name_(std::move(shader)), bindings_(bindings.begin(), bindings.end()) {
-  std::vector<VkDescriptorSetLayoutBinding> lb;
-  for (const auto& b : bindings_) {
-    lb.push_back({b.binding, b.type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
-  }
-  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  lci.bindingCount = uint32_t(lb.size());
-  lci.pBindings = lb.data();
-  check(vkCreateDescriptorSetLayout(ctx.device(), &lci, nullptr, &set_layout_), "vkCreateDescriptorSetLayout");
-  VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  pli.setLayoutCount = 1;
-  pli.pSetLayouts = &set_layout_;
-  VkPushConstantRange pcr{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_constant_bytes};
-  if (push_constant_bytes > 0) {
-    pli.pushConstantRangeCount = 1;
-    pli.pPushConstantRanges = &pcr;
-  }
-  check(vkCreatePipelineLayout(ctx.device(), &pli, nullptr, &layout_), "vkCreatePipelineLayout");
+    : name_(std::move(shader)), bindings_(bindings.begin(), bindings.end()) {
+  std::string key = name_ + "|push " + std::to_string(push_constant_bytes) + "|bindings";
+  for (const auto& b : bindings_) key += " " + std::to_string(b.binding) + ":" + std::to_string(int(b.type));
+  key += "|spec";
+  for (const auto& s : spec) key += " " + std::to_string(s.id) + "=" + std::to_string(s.value);
+  objects_ = std::static_pointer_cast<Objects>(ctx.cached_pipeline(key, [&]() -> std::shared_ptr<void> {
+    auto o = std::make_shared<Objects>();
+    o->device = ctx.device();
+    std::vector<VkDescriptorSetLayoutBinding> lb;
+    for (const auto& b : bindings_) lb.push_back({b.binding, b.type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+    VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    lci.bindingCount = uint32_t(lb.size());
+    lci.pBindings = lb.data();
+    check(vkCreateDescriptorSetLayout(ctx.device(), &lci, nullptr, &o->set_layout), "vkCreateDescriptorSetLayout");
+    VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    pli.setLayoutCount = 1;
+    pli.pSetLayouts = &o->set_layout;
+    VkPushConstantRange pcr{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_constant_bytes};
+    if (push_constant_bytes > 0) {
+      pli.pushConstantRangeCount = 1;
+      pli.pPushConstantRanges = &pcr;
+    }
+    check(vkCreatePipelineLayout(ctx.device(), &pli, nullptr, &o->layout), "vkCreatePipelineLayout");
 
-  auto words = shaders::spirv(name_);
-  VkShaderModuleCreateInfo smci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  smci.codeSize = words.size_bytes();
-  smci.pCode = words.data();
-  VkShaderModule module;
-  check(vkCreateShaderModule(ctx.device(), &smci, nullptr, &module), "vkCreateShaderModule");
+    auto words = shaders::spirv(name_);
+    VkShaderModuleCreateInfo smci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    smci.codeSize = words.size_bytes();
+    smci.pCode = words.data();
+    VkShaderModule module;
+    check(vkCreateShaderModule(ctx.device(), &smci, nullptr, &module), "vkCreateShaderModule");
 
-  std::vector<VkSpecializationMapEntry> entries;
-  std::vector<uint32_t> values;
-  for (const auto& s : spec) {
-    entries.push_back({s.id, uint32_t(values.size() * sizeof(uint32_t)), sizeof(uint32_t)});
-    values.push_back(s.value);
-  }
-  VkSpecializationInfo si{uint32_t(entries.size()), entries.data(), values.size() * sizeof(uint32_t), values.data()};
-  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  ci.stage.module = module;
-  ci.stage.pName = "main";
-  ci.stage.pSpecializationInfo = entries.empty() ? nullptr : &si;
-  ci.layout = layout_;
-  VkResult r = vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_);
-  vkDestroyShaderModule(ctx.device(), module, nullptr);
-  check(r, ("vkCreateComputePipelines(" + name_ + ")").c_str());
+    std::vector<VkSpecializationMapEntry> entries;
+    std::vector<uint32_t> values;
+    for (const auto& s : spec) {
+      entries.push_back({s.id, uint32_t(values.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+      values.push_back(s.value);
+    }
+    VkSpecializationInfo si{uint32_t(entries.size()), entries.data(), values.size() * sizeof(uint32_t), values.data()};
+    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    ci.stage.module = module;
+    ci.stage.pName = "main";
+    ci.stage.pSpecializationInfo = entries.empty() ? nullptr : &si;
+    ci.layout = o->layout;
+    VkResult r = vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &o->pipeline);
+    vkDestroyShaderModule(ctx.device(), module, nullptr);
+    check(r, ("vkCreateComputePipelines(" + name_ + ")").c_str());
+    return o;
+  }));
 }
 
-ComputePipeline::~ComputePipeline() {
-  vkDestroyPipeline(ctx_.device(), pipeline_, nullptr);
-  vkDestroyPipelineLayout(ctx_.device(), layout_, nullptr);
-  vkDestroyDescriptorSetLayout(ctx_.device(), set_layout_, nullptr);
+ComputePipeline::~ComputePipeline() = default;
+
+ComputePipeline::Objects::~Objects() {
+  if (!device) return;
+  vkDestroyPipeline(device, pipeline, nullptr);
+  vkDestroyPipelineLayout(device, layout, nullptr);
+  vkDestroyDescriptorSetLayout(device, set_layout, nullptr);
 }
 
 DescriptorSet::DescriptorSet(const Context& ctx, const ComputePipeline& pipeline)

@@ -2,6 +2,7 @@
 // Compute pipelines from the SPIR-V compiled in at build time, with specialization constants,
 // and the descriptor sets that feed them.
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -28,19 +29,24 @@ class ComputePipeline {
   ComputePipeline(const ComputePipeline&) = delete;
   ComputePipeline& operator=(const ComputePipeline&) = delete;
 
-  VkPipeline pipeline() const { return pipeline_; }
-  VkPipelineLayout layout() const { return layout_; }
-  VkDescriptorSetLayout set_layout() const { return set_layout_; }
+  VkPipeline pipeline() const { return objects_->pipeline; }
+  VkPipelineLayout layout() const { return objects_->layout; }
+  VkDescriptorSetLayout set_layout() const { return objects_->set_layout; }
   const std::string& name() const { return name_; }
   const std::vector<Binding>& bindings() const { return bindings_; }
 
  private:
-  const Context& ctx_;
+  // The Vulkan objects, shared through the context's pipeline cache (Context::cached_pipeline).
+  struct Objects {
+    VkDevice device = VK_NULL_HANDLE;
+    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    ~Objects();
+  };
   std::string name_;
   std::vector<Binding> bindings_;
-  VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-  VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  std::shared_ptr<Objects> objects_;
 };
 
 // One descriptor set for one pipeline, in its own small pool.

@@ -48,7 +48,8 @@ EmitterTable build_emitter_table(const scene::Scene& scene, const scene::FrameSt
     const auto& mesh = scene.meshes[inst.lod_meshes[frame.lods[i]]];
     glm::mat4 m = object_to_render(frame.transforms[i], origin);
     bool mirrored = glm::determinant(glm::mat3(m)) < 0.0f;
-    for (const auto& prim : mesh.primitives) {
+    for (size_t g = 0; g < mesh.primitives.size(); ++g) {
+      const auto& prim = mesh.primitives[g];
       const auto& mat = scene.materials[prim.material];
       double lum = 0.2126 * mat.emission.r + 0.7152 * mat.emission.g + 0.0722 * mat.emission.b;
       if (!(lum > 0.0)) continue;
@@ -63,7 +64,8 @@ EmitterTable build_emitter_table(const scene::Scene& scene, const scene::FrameSt
         if (!(area > 0.0f) || !std::isfinite(area)) continue;  // degenerate: cannot be sampled by area
         double w = lum * double(area) * (mat.double_sided ? 2.0 : 1.0);
         t.emitters.push_back({glm::vec4(p[0], area), glm::vec4(p[1], 0.0f), glm::vec4(p[2], flag_bits),
-                              glm::vec4(mat.emission, 0.0f)});
+                              glm::vec4(mat.emission, 0.0f),
+                              glm::uvec4(uint32_t(i), uint32_t(g), uint32_t(tri), mirrored ? 1u : 0u)});
         power.push_back(w);
         t.total_power += w;
       }

@@ -3,17 +3,29 @@
 #include <cmath>
 
 namespace strata::render {
+namespace {
+
+// The camera in its own frame's render space (its position is the origin).
+gpu::GpuCamera make_camera(const scene::Camera& cam, uint32_t width, uint32_t height) {
+  float tan_half = std::tan(0.5f * cam.yfov);
+  float aspect = float(width) / float(height);
+  gpu::GpuCamera c{};
+  c.forward = glm::vec4(cam.orientation * glm::vec3(0, 0, -1), 0);
+  c.right = glm::vec4(cam.orientation * glm::vec3(1, 0, 0) * (tan_half * aspect), 0);
+  c.up = glm::vec4(cam.orientation * glm::vec3(0, 1, 0) * tan_half, 0);
+  c.lens = glm::vec4(cam.aperture, cam.focus_distance, 0, 0);
+  return c;
+}
+
+// With both kinds of light, NEE splits its samples evenly between them.
+float env_select_prob(bool env_nee, uint32_t emitter_count) { return !env_nee ? 0.0f : (emitter_count == 0 ? 1.0f : 0.5f); }
+
+}  // namespace
 
 gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, const scene::Environment& env,
                                             const GpuScene& scene, const FrameSetup& setup) {
-  const auto& cam = frame.camera;
-  float tan_half = std::tan(0.5f * cam.yfov);
-  float aspect = float(setup.width) / float(setup.height);
   gpu::GpuFrameConstants c{};
-  c.camera.forward = glm::vec4(cam.orientation * glm::vec3(0, 0, -1), 0);
-  c.camera.right = glm::vec4(cam.orientation * glm::vec3(1, 0, 0) * (tan_half * aspect), 0);
-  c.camera.up = glm::vec4(cam.orientation * glm::vec3(0, 1, 0) * tan_half, 0);
-  c.camera.lens = glm::vec4(cam.aperture, cam.focus_distance, 0, 0);
+  c.camera = make_camera(frame.camera, setup.width, setup.height);
   c.environment = glm::vec4(env.radiance, setup.env_nee ? 1.0f : 0.0f);
   c.width = setup.width;
   c.height = setup.height;
@@ -23,8 +35,22 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   c.max_depth = setup.max_depth;
   c.emitter_count = scene.emitter_count();
   c.total_emitter_power = float(scene.total_emitter_power());
-  // With both kinds of light, NEE splits its samples evenly between them.
-  c.env_select_prob = !setup.env_nee ? 0.0f : (c.emitter_count == 0 ? 1.0f : 0.5f);
+  c.env_select_prob = env_select_prob(setup.env_nee, c.emitter_count);
+
+  // The previous frame (DESIGN.md section 3, session state): the one the scene's previous slot
+  // holds, at the same resolution (a session's image size is fixed). After the first update that
+  // is this frame itself, so the fields are consistent even where HISTORY_VALID is not set.
+  const scene::FrameState& prev = scene.previous_frame();
+  c.prev_camera = make_camera(prev.camera, setup.width, setup.height);
+  c.prev_total_emitter_power = float(scene.prev_total_emitter_power());
+  c.prev_env_select_prob = env_select_prob(setup.env_nee, scene.prev_emitter_count());
+  c.prev_width = setup.width;
+  c.prev_height = setup.height;
+  if (scene.history_valid()) {
+    c.history_flags = gpu::HISTORY_VALID;
+    if (scene.moved_since_previous()) c.history_flags |= gpu::HISTORY_SCENE_MOVED;
+    if (!(prev.camera == frame.camera)) c.history_flags |= gpu::HISTORY_CAMERA_MOVED;
+  }
   return c;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
-// GpuFrameConstants for a frame: the camera in render space and the light-sampling setup.
+// GpuFrameConstants for a frame: the camera in render space, the light-sampling setup, and the
+// same of the previous frame with the history flags.
 #include "include/frame_data.h"
 #include "render/scene_gpu.h"
 #include "scene/scene.h"
@@ -16,7 +17,8 @@ struct FrameSetup {
   bool env_nee = false;  // the environment is sampled by next-event estimation
 };
 
-// Call after GpuScene::record_update for the same frame (it uses that frame's emitter table).
+// Call after GpuScene::record_update for the same frame (it uses that frame's emitter table, and
+// the previous frame's camera and light totals that the scene kept).
 gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, const scene::Environment& env,
                                             const GpuScene& scene, const FrameSetup& setup);
 

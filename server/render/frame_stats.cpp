@@ -21,6 +21,8 @@ nlohmann::json to_json(const FrameStats& s) {
   j["rays_total"] = s.rays_total();
   j["paths"] = s.paths;
   j["nonfinite_rejected"] = s.nonfinite_rejected;
+  if (!s.reuse.empty()) j["reuse"] = s.reuse;
+  if (!s.shift_failures.empty()) j["shift_failures"] = s.shift_failures;
   j["memory_bytes"] = s.memory_bytes;
   nlohmann::json decisions = nlohmann::json::array();
   for (const auto& d : s.passes) decisions.push_back({{"pass", d.pass}, {"ran", d.ran}, {"reason", d.reason}});

@@ -22,7 +22,9 @@ struct FrameStats {
   uint32_t frame = 0;
   std::vector<gpu::PassTime> pass_ms;
   double gpu_ms_total = 0.0;
-  std::map<std::string, uint64_t> rays_traced;   // by kind: primary, bounce, shadow
+  std::map<std::string, uint64_t> rays_traced;   // by kind (pt: primary, bounce, shadow) or by pass (ReSTIR)
+  std::map<std::string, uint64_t> reuse;          // ReSTIR: shifts attempted, samples taken from history/neighbours
+  std::map<std::string, uint64_t> shift_failures; // ReSTIR: by pass and reason (restir_data.h SHIFT_FAIL_*)
   uint64_t paths = 0;
   uint64_t nonfinite_rejected = 0;                // samples zeroed by the DESIGN.md section 6 guard
   std::map<std::string, uint64_t> memory_bytes;   // by buffer group

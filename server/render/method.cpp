@@ -2,6 +2,7 @@
 #include <stdexcept>
 
 #include "render/path_tracer.h"
+#include "render/restir_gather.h"
 #include "render/renderer.h"
 
 namespace strata::render {
@@ -9,6 +10,11 @@ namespace strata::render {
 std::unique_ptr<Method> make_method(const RenderSettings& settings, const SharedResources& shared) {
   if (settings.method == "pt")
     return std::make_unique<PathTracer>(shared, settings.width, settings.height, settings.spp, settings.samples_per_dispatch);
+  if (settings.method == "restir-gather" || settings.method == "restir-di") {
+    RenderSettings s = settings;
+    s.restir.direct_lighting = settings.method == "restir-di" || settings.restir.direct_lighting;
+    return std::make_unique<RestirGather>(shared, s);
+  }
   throw std::invalid_argument("method = '" + settings.method + "' has no implementation");
 }
 

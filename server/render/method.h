@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,8 @@ struct MethodFrame {
   uint32_t frame_index;
   uint64_t sample_base;  // samples already accumulated for this frame state
   bool env_nee;          // the environment is sampled by next-event estimation
+  bool history_valid;    // the scene's previous slot holds the previous frame (GpuScene::history_valid)
+  bool scene_moved;      // some transform or LoD level changed since the previous frame
 };
 
 class Method {
@@ -43,6 +46,11 @@ class Method {
   virtual std::vector<PassDecision> decisions() const = 0;
   // Device memory the method itself holds, by buffer group.
   virtual std::map<std::string, uint64_t> memory_bytes() const = 0;
+  // Adds the method's own counters (frame_data.h COUNTER_*) to the frame statistics.
+  virtual void collect(std::span<const uint32_t> counters, FrameStats& stats) const {
+    (void)counters;
+    (void)stats;
+  }
 };
 
 std::unique_ptr<Method> make_method(const RenderSettings& settings, const SharedResources& shared);

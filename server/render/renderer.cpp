@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "render/frame_constants.h"
 
@@ -26,6 +27,12 @@ void RenderSettings::validate() const {
   require(in(max_depth, 1, RenderLimits::max_depth),
           "max_depth = " + std::to_string(max_depth) + " is outside [1, " + std::to_string(RenderLimits::max_depth) + "]");
   require(in(samples_per_dispatch, 1, 4096), "samples_per_dispatch = " + std::to_string(samples_per_dispatch) + " is outside [1, 4096]");
+  if (method != "pt") {
+    require(spp == 1, "spp = " + std::to_string(spp) + " but method " + method +
+                          " keeps one reservoir per pixel and shades one sample per frame; use restir.initial_candidates "
+                          "for more candidates per frame (spp must be 1)");
+    restir.validate();
+  }
   auto methods = available_methods();
   if (std::find(methods.begin(), methods.end(), method) == methods.end()) {
     std::string list;
@@ -34,13 +41,28 @@ void RenderSettings::validate() const {
   }
 }
 
-std::vector<std::string> available_methods() { return {"pt"}; }
+void RestirOptions::validate() const {
+  require(shift == "reconnection" || shift == "hybrid", "restir.shift = '" + shift + "' is not one of: reconnection, hybrid");
+  require(mis == "balance" || mis == "pairwise", "restir.mis = '" + mis + "' is not one of: balance, pairwise");
+  require(std::isfinite(confidence_cap) && confidence_cap >= 1.0f && confidence_cap <= 1000.0f,
+          "restir.confidence_cap = " + std::to_string(confidence_cap) + " is outside [1, 1000]");
+  require(spatial_neighbors <= 8, "restir.spatial_neighbors = " + std::to_string(spatial_neighbors) + " is outside [0, 8]");
+  require(std::isfinite(spatial_radius) && spatial_radius >= 1.0f && spatial_radius <= 256.0f,
+          "restir.spatial_radius = " + std::to_string(spatial_radius) + " is outside [1, 256] pixels");
+  require(initial_candidates >= 1 && initial_candidates <= 64,
+          "restir.initial_candidates = " + std::to_string(initial_candidates) + " is outside [1, 64]");
+  require(light_candidates >= 1 && light_candidates <= 32,
+          "restir.light_candidates = " + std::to_string(light_candidates) + " is outside [1, 32]");
+}
+
+std::vector<std::string> available_methods() { return {"pt", "restir-gather", "restir-di"}; }
 
 
 Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSettings settings)
     : ctx_(ctx), settings_(std::move(settings)) {
   settings_.validate();
-  scene_ = std::make_unique<GpuScene>(ctx, scene);
+  // Temporal reuse needs the previous frame's TLAS and instances on the device; `pt` keeps none.
+  scene_ = std::make_unique<GpuScene>(ctx, scene, /*keep_history=*/settings_.method != "pt");
   size_t pixels = size_t(settings_.width) * settings_.height;
   constants_ = gpu::Buffer(ctx, sizeof(gpu::GpuFrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "frame constants");
   counters_ = gpu::Buffer(ctx, sizeof(uint32_t) * gpu::COUNTER_COUNT, gpu::k_storage_usage, gpu::Memory::Device, "counters");
@@ -58,6 +80,7 @@ std::map<std::string, uint64_t> Renderer::memory_bytes() const {
                                        {"scene_per_frame", mem.per_frame},
                                        {"image", accum_.size()},
                                        {"frame_constants_and_counters", constants_.size() + counters_.size()}};
+  if (mem.history > 0) m["scene_history"] = mem.history;
   for (const auto& [group, bytes] : method_->memory_bytes()) m[group] += bytes;
   return m;
 }
@@ -74,7 +97,7 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
   // The environment is sampled by NEE whenever it emits (a scene property, the same every frame).
   const bool env_nee = glm::any(glm::greaterThan(sc.environment.radiance, glm::vec3(0.0f)));
   if (!accumulate) accumulated_spp_ = 0;
-  uint32_t tlas_builds_before = scene_->tlas().builds(), tlas_refits_before = scene_->tlas().refits();
+  uint32_t tlas_builds_before = scene_->tlas_builds(), tlas_refits_before = scene_->tlas_refits();
 
   ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
     timer_->reset(cmd);
@@ -90,7 +113,8 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
     gpu::GpuFrameConstants c = make_frame_constants(frame, sc.environment, *scene_, setup);
     constants_.upload(&c, sizeof c);
 
-    method_->record(cmd, *timer_, MethodFrame{frame, frame_index, accumulated_spp_, env_nee});
+    method_->record(cmd, *timer_,
+                    MethodFrame{frame, frame_index, accumulated_spp_, env_nee, scene_->history_valid(), scene_->moved_since_previous()});
   });
   accumulated_spp_ += settings_.spp;
 
@@ -117,9 +141,10 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
                    {"shadow", counters[gpu::COUNTER_RAYS_SHADOW]}};
   s.paths = counters[gpu::COUNTER_PATHS];
   s.nonfinite_rejected = counters[gpu::COUNTER_NONFINITE_REJECTED];
+  method_->collect(counters, s);
   s.memory_bytes = memory_bytes();
-  s.tlas_builds = scene_->tlas().builds() - tlas_builds_before;
-  s.tlas_refits = scene_->tlas().refits() - tlas_refits_before;
+  s.tlas_builds = scene_->tlas_builds() - tlas_builds_before;
+  s.tlas_refits = scene_->tlas_refits() - tlas_refits_before;
   s.passes = {{"update", true, s.tlas_refits ? "TLAS refit (transforms only)" : "TLAS build"}};
   for (auto& d : method_->decisions()) s.passes.push_back(std::move(d));
   return r;

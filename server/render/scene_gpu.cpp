@@ -1,6 +1,7 @@
 #include "render/scene_gpu.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "include/bindings.h"
@@ -13,12 +14,15 @@ constexpr VkBufferUsageFlags k_geometry_usage =
 
 }  // namespace
 
-GpuScene::GpuScene(const gpu::Context& ctx, const scene::Scene& scene) : ctx_(ctx), scene_(scene) {
+GpuScene::GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep_history) : ctx_(ctx), scene_(scene) {
   scene.validate();
   upload_geometry();
-  tlas_ = std::make_unique<gpu::Tlas>(ctx, uint32_t(scene.instances.size()));
-  instances_ = gpu::Buffer(ctx, std::max<size_t>(16, sizeof(gpu::GpuInstance) * scene.instances.size()), gpu::k_storage_usage,
-                           gpu::Memory::Host, "instances");
+  slots_.resize(keep_history ? 2 : 1);
+  for (auto& slot : slots_) {
+    slot.tlas = std::make_unique<gpu::Tlas>(ctx, uint32_t(scene.instances.size()));
+    slot.instances = gpu::Buffer(ctx, std::max<size_t>(16, sizeof(gpu::GpuInstance) * scene.instances.size()),
+                                 gpu::k_storage_usage, gpu::Memory::Host, "instances");
+  }
   // Emitter capacity: the most emissive triangles any LoD choice can produce.
   size_t capacity = 0;
   for (const auto& inst : scene.instances) {
@@ -78,6 +82,8 @@ void GpuScene::upload_geometry() {
 }
 
 glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState& frame) {
+  // With history the previous frame's slot stays untouched: temporal passes of this frame read it.
+  if (keeps_history() && frames_ > 0) parity_ = 1 - parity_;
   glm::dvec3 origin(frame.camera.position);
   std::vector<gpu::GpuInstance> records;
   std::vector<VkAccelerationStructureInstanceKHR> tlas_instances;
@@ -96,22 +102,54 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
     vi.accelerationStructureReference = blas_[mesh].address();
     tlas_instances.push_back(vi);
   }
-  instances_.upload(records.data(), records.size() * sizeof(gpu::GpuInstance));
-  // Refit keeps the tree topology: valid while the same BLASes are referenced (no LoD switch).
-  bool refit = frame.lods == last_lods_;
-  tlas_->record_build(cmd, tlas_instances, refit);
-  last_lods_ = frame.lods;
+  write_slot(cmd, slots_[size_t(parity_)], frame, origin, records, tlas_instances);
+  if (keeps_history() && frames_ == 0) {
+    // The first frame has no predecessor: it seeds the other slot too, so that descriptor sets
+    // always bind built objects (history_valid() stays false until the second frame).
+    write_slot(cmd, slots_[size_t(1 - parity_)], frame, origin, records, tlas_instances);
+    ++seed_builds_;
+  }
+  moved_ = frames_ > 0 && (frame.transforms != current_.transforms || frame.lods != current_.lods);
+  if (frames_ > 0) previous_ = std::move(current_);
+  else previous_ = frame;
+  current_ = frame;
 
   EmitterTable table = build_emitter_table(scene_, frame, origin);
+  prev_emitter_count_ = frames_ > 0 ? emitter_count_ : uint32_t(table.emitters.size());
+  prev_total_power_ = frames_ > 0 ? total_power_ : table.total_power;
   emitter_count_ = uint32_t(table.emitters.size());
   total_power_ = table.total_power;
+  ++frames_;
   if (emitter_count_ > emitter_capacity_) throw gpu::GpuError("emitter table overflow");
   emitters_.upload(table.emitters.data(), table.emitters.size() * sizeof(gpu::GpuEmitter));
   alias_.upload(table.alias.data(), table.alias.size() * sizeof(gpu::GpuAliasEntry));
   return origin;
 }
 
-std::vector<gpu::Binding> GpuScene::bindings(bool with_lights) {
+void GpuScene::write_slot(VkCommandBuffer cmd, Slot& slot, const scene::FrameState& frame, glm::dvec3 origin,
+                          std::span<const gpu::GpuInstance> records,
+                          std::span<const VkAccelerationStructureInstanceKHR> tlas_instances) {
+  slot.instances.upload(records.data(), records.size_bytes());
+  // Refit keeps the tree topology: valid while the same BLASes are referenced (no LoD switch since
+  // this TLAS's own last build, which with history is the frame before last).
+  slot.tlas->record_build(cmd, tlas_instances, frame.lods == slot.last_lods);
+  slot.last_lods = frame.lods;
+  slot.origin = origin;
+}
+
+uint32_t GpuScene::tlas_builds() const {
+  uint32_t n = 0;
+  for (const auto& slot : slots_) n += slot.tlas->builds();
+  return n - seed_builds_;
+}
+
+uint32_t GpuScene::tlas_refits() const {
+  uint32_t n = 0;
+  for (const auto& slot : slots_) n += slot.tlas->refits();
+  return n;
+}
+
+std::vector<gpu::Binding> GpuScene::bindings(bool with_lights, bool with_history) {
   std::vector<gpu::Binding> b = {
       {BINDING_TLAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
       {BINDING_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -124,19 +162,33 @@ std::vector<gpu::Binding> GpuScene::bindings(bool with_lights) {
     b.push_back({BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
     b.push_back({BINDING_ALIAS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   }
+  if (with_history) {
+    b.push_back({BINDING_TLAS_PREV, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR});
+    b.push_back({BINDING_INSTANCES_PREV, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+  }
   return b;
 }
 
-void GpuScene::bind(gpu::DescriptorSet& set, bool with_lights) const {
-  set.bind_tlas(BINDING_TLAS, tlas_->handle());
+void GpuScene::bind(gpu::DescriptorSet& set, bool with_lights) const { bind(set, with_lights, false, parity_); }
+
+void GpuScene::bind(gpu::DescriptorSet& set, bool with_lights, bool with_history, int parity) const {
+  if (parity != 0 && parity != 1) throw std::invalid_argument("GpuScene::bind: parity must be 0 or 1");
+  if (with_history && !keeps_history()) throw std::logic_error("GpuScene::bind: this scene keeps no history");
+  const Slot& current = slots_[keeps_history() ? size_t(parity) : 0];
+  set.bind_tlas(BINDING_TLAS, current.tlas->handle());
   set.bind_buffer(BINDING_VERTICES, vertices_);
   set.bind_buffer(BINDING_INDICES, indices_);
   set.bind_buffer(BINDING_PRIMITIVES, primitives_);
-  set.bind_buffer(BINDING_INSTANCES, instances_);
+  set.bind_buffer(BINDING_INSTANCES, current.instances);
   set.bind_buffer(BINDING_MATERIALS, materials_);
   if (with_lights) {
     set.bind_buffer(BINDING_EMITTERS, emitters_);
     set.bind_buffer(BINDING_ALIAS, alias_);
+  }
+  if (with_history) {
+    const Slot& previous = slots_[size_t(1 - parity)];
+    set.bind_tlas(BINDING_TLAS_PREV, previous.tlas->handle());
+    set.bind_buffer(BINDING_INSTANCES_PREV, previous.instances);
   }
 }
 
@@ -144,8 +196,11 @@ SceneMemory GpuScene::memory() const {
   SceneMemory m;
   m.geometry = vertices_.size() + indices_.size() + primitives_.size() + materials_.size();
   for (const auto& b : blas_) m.acceleration += b.bytes();
-  m.acceleration += tlas_->bytes() + tlas_->scratch_bytes();
-  m.per_frame = instances_.size() + emitters_.size() + alias_.size();
+  const Slot& first = slots_[0];
+  m.acceleration += first.tlas->bytes() + first.tlas->scratch_bytes();
+  m.per_frame = first.instances.size() + emitters_.size() + alias_.size();
+  for (size_t i = 1; i < slots_.size(); ++i)
+    m.history += slots_[i].tlas->bytes() + slots_[i].tlas->scratch_bytes() + slots_[i].instances.size();
   return m;
 }
 

@@ -2,7 +2,11 @@
 // A scene on the device: geometry and materials uploaded once, one BLAS per mesh (every LoD level),
 // and per frame the instance records, the TLAS (refit when only transforms move) and the emitter
 // tables, all in render space (world space with the camera at the origin).
+// With history (methods with temporal reuse), the instance records and the TLAS exist twice, in
+// two slots used alternately, so that the previous frame's scene stays on the device, untouched,
+// in the same command buffer as the current one (DESIGN.md section 3, session state).
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "gpu/accel.h"
@@ -19,50 +23,95 @@ struct SceneMemory {
   VkDeviceSize geometry = 0;       // vertices, indices, primitive and material records
   VkDeviceSize acceleration = 0;   // BLAS, TLAS, scratch
   VkDeviceSize per_frame = 0;      // instances, emitters, alias table
+  VkDeviceSize history = 0;        // the previous frame's slot: second TLAS, its scratch, instances
 };
 
 class GpuScene {
  public:
-  GpuScene(const gpu::Context& ctx, const scene::Scene& scene);
+  // Without `keep_history` there is one slot and nothing of the previous frame is kept on the device.
+  GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep_history = false);
 
   // Uploads instance records and emitter tables for `frame` and records the TLAS build or refit.
+  // With history, the frame goes to the slot the frame before last used (parity() flips), and the
+  // very first frame is written to both slots so that the previous slot is always valid to bind.
   // Returns the render-space origin (the camera position) used.
   glm::dvec3 record_update(VkCommandBuffer cmd, const scene::FrameState& frame);
 
   const scene::Scene& scene() const { return scene_; }
   // The descriptor bindings of the scene bridge (shaders/include/scene_bridge.glsl), plus the
-  // emitter tables of light sampling when `with_lights`; bind() fills them in a set.
-  static std::vector<gpu::Binding> bindings(bool with_lights);
+  // emitter tables of light sampling when `with_lights`, plus BINDING_TLAS_PREV and
+  // BINDING_INSTANCES_PREV when `with_history`; bind() fills them in a set.
+  static std::vector<gpu::Binding> bindings(bool with_lights, bool with_history = false);
+  // Binds the current slot. With history that goes stale at the next update: use the overload below.
   void bind(gpu::DescriptorSet& set, bool with_lights) const;
+  // Binds slot `parity` as the current frame and slot 1 - parity as the previous one: a method
+  // builds one set per parity once and dispatches with the set of parity() each frame.
+  void bind(gpu::DescriptorSet& set, bool with_lights, bool with_history, int parity) const;
+
+  bool keeps_history() const { return slots_.size() == 2; }
+  int parity() const { return parity_; }  // slot of the last recorded frame (always 0 without history)
+  // Slot 1 - parity() holds the frame before the last one (false after the first frame: it holds
+  // a copy of that frame then).
+  bool history_valid() const { return keeps_history() && frames_ >= 2; }
+  // Some transform or LoD level of the last recorded frame differs from the frame before it.
+  bool moved_since_previous() const { return moved_; }
+  // The frame state recorded before the last one (the last one itself after the first update).
+  const scene::FrameState& previous_frame() const { return previous_; }
 
   const gpu::Buffer& vertices() const { return vertices_; }
   const gpu::Buffer& indices() const { return indices_; }
   const gpu::Buffer& primitives() const { return primitives_; }
   const gpu::Buffer& materials() const { return materials_; }
-  const gpu::Buffer& instances() const { return instances_; }
+  const gpu::Buffer& instances() const { return slots_[size_t(parity_)].instances; }
+  const gpu::Buffer& instances(int slot) const { return slots_.at(size_t(slot)).instances; }
   const gpu::Buffer& emitters() const { return emitters_; }
   const gpu::Buffer& alias() const { return alias_; }
-  const gpu::Tlas& tlas() const { return *tlas_; }
+  const gpu::Tlas& tlas() const { return *slots_[size_t(parity_)].tlas; }
+  const gpu::Tlas& tlas(int slot) const { return *slots_.at(size_t(slot)).tlas; }
+  // Render-space origin (world position of the camera) of the frame a slot holds.
+  glm::dvec3 origin(int slot) const { return slots_.at(size_t(slot)).origin; }
+  // TLAS builds and refits over both slots, one per recorded frame (the seed of the first frame's
+  // previous slot is not counted): what FrameStats::tlas_builds/refits report.
+  uint32_t tlas_builds() const;
+  uint32_t tlas_refits() const;
   uint32_t emitter_count() const { return emitter_count_; }
   double total_emitter_power() const { return total_power_; }
+  // Light-selection totals of the previous frame (those of the last one after the first update).
+  uint32_t prev_emitter_count() const { return prev_emitter_count_; }
+  double prev_total_emitter_power() const { return prev_total_power_; }
   bool has_emitters() const { return has_emitters_; }
   SceneMemory memory() const;
   uint64_t max_triangles_per_frame() const;
 
  private:
+  // One frame's scene on the device: its instance records and TLAS.
+  struct Slot {
+    std::unique_ptr<gpu::Tlas> tlas;
+    gpu::Buffer instances;
+    std::vector<uint32_t> last_lods;  // of this TLAS's last build: a refit needs the same BLASes
+    glm::dvec3 origin{0.0};
+  };
   void upload_geometry();
+  void write_slot(VkCommandBuffer cmd, Slot& slot, const scene::FrameState& frame, glm::dvec3 origin,
+                  std::span<const gpu::GpuInstance> records, std::span<const VkAccelerationStructureInstanceKHR> tlas_instances);
   const gpu::Context& ctx_;
   const scene::Scene& scene_;
   gpu::Buffer vertices_, indices_, primitives_, materials_;
-  gpu::Buffer instances_, emitters_, alias_;
+  gpu::Buffer emitters_, alias_;
   std::vector<gpu::Blas> blas_;                 // per mesh
   std::vector<uint32_t> mesh_primitive_base_;   // per mesh: first GpuPrimitive
-  std::unique_ptr<gpu::Tlas> tlas_;
-  std::vector<uint32_t> last_lods_;
+  std::vector<Slot> slots_;                     // 1, or 2 with history
+  int parity_ = 0;
+  uint32_t frames_ = 0;                         // record_update calls so far
+  uint32_t seed_builds_ = 0;                    // TLAS builds that seeded the previous slot
+  scene::FrameState current_, previous_;
+  bool moved_ = false;
   bool has_emitters_ = false;
   uint32_t emitter_count_ = 0;
   uint32_t emitter_capacity_ = 0;
   double total_power_ = 0.0;
+  uint32_t prev_emitter_count_ = 0;
+  double prev_total_power_ = 0.0;
 };
 
 }  // namespace strata::render

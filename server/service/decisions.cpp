@@ -30,27 +30,62 @@ std::vector<v1::Decision> decide(const MethodTraits& method, const v1::RenderOpt
   const std::string no_reuse = "method " + m + " has no reuse; used by the restir-* methods";
   auto asked = [](bool has, const std::string& value) { return has ? value : std::string(); };
 
-  out.push_back(make("method", m, m, true,
-                     method.reuse ? "ReSTIR path tracing with reuse" : "reference path tracer: next-event estimation and MIS, no reuse"));
+  const bool di = m == "restir-di";
+  std::string method_reason = "reference path tracer: next-event estimation and MIS, no reuse";
+  if (di) method_reason = "ReSTIR DI: resampled direct lighting over one-bounce paths (camera, first hit, light)";
+  else if (method.reuse) method_reason = "ReSTIR path tracing with reuse";
+  out.push_back(make("method", m, m, true, method_reason));
   out.push_back(make("spp", asked(req.has_spp(), u(req.spp())), u(eff.spp()), true,
-                     method.reuse ? "initial paths per pixel per frame" : "samples per pixel per frame"));
+                     method.reuse ? "one reservoir per pixel, shaded once per frame (spp must be 1)" : "samples per pixel per frame"));
   out.push_back(make("max_depth", asked(req.has_max_depth(), u(req.max_depth())), u(eff.max_depth()), true,
-                     "path segments after the camera"));
+                     di ? "path segments after the camera; restir-di uses at most 2 (camera, first hit, light)"
+                        : "path segments after the camera"));
 
-  // Resampling options.
-  out.push_back(make("shift", asked(req.has_shift(), shift_name(req.shift())), shift_name(eff.shift()), method.reuse,
-                     method.reuse ? "shift mapping between pixels' paths" : no_reuse));
-  out.push_back(make("mis", asked(req.has_mis(), mis_name(req.mis())), mis_name(eff.mis()), method.reuse,
-                     method.reuse ? "MIS weights of resampling" : no_reuse));
+  // Resampling options. Each pass can be switched off; the options of a pass that is off do not apply.
+  const bool temporal = method.reuse && eff.temporal_reuse();
+  const bool spatial = method.reuse && eff.spatial_reuse() && eff.spatial_neighbors() > 0;
+  auto on_off = [](bool b) { return std::string(b ? "on" : "off"); };
+  const std::string no_temporal = "temporal reuse is off (temporal_reuse = false)";
+  const std::string no_spatial = !eff.spatial_reuse() ? "spatial reuse is off (spatial_reuse = false)"
+                                                      : "spatial reuse is off (spatial_neighbors = 0)";
+  out.push_back(make("temporal_reuse", asked(req.has_temporal_reuse(), on_off(req.temporal_reuse())),
+                     on_off(eff.temporal_reuse()), method.reuse,
+                     method.reuse ? (eff.temporal_reuse() ? "the previous frame's reservoirs, by backprojection"
+                                                          : "requested off: no temporal pass")
+                                  : no_reuse));
+  out.push_back(make("spatial_reuse", asked(req.has_spatial_reuse(), on_off(req.spatial_reuse())),
+                     on_off(eff.spatial_reuse()), method.reuse,
+                     method.reuse ? (eff.spatial_reuse() ? "the neighbours' reservoirs (spatial_neighbors within spatial_radius)"
+                                                         : "requested off: no spatial pass")
+                                  : no_reuse));
+  out.push_back(make("shift", asked(req.has_shift(), shift_name(req.shift())), shift_name(eff.shift()),
+                     temporal || spatial,
+                     !method.reuse ? no_reuse
+                     : temporal || spatial ? "shift mapping between pixels' paths"
+                                           : "temporal and spatial reuse are off: no shifts"));
+  out.push_back(make("mis", asked(req.has_mis(), mis_name(req.mis())), mis_name(eff.mis()), spatial,
+                     !method.reuse ? no_reuse : spatial ? "MIS weights of spatial resampling" : no_spatial));
+  out.push_back(make("unbiased", asked(req.has_unbiased(), on_off(req.unbiased())), on_off(eff.unbiased()), temporal,
+                     !method.reuse ? no_reuse
+                     : !temporal   ? no_temporal
+                     : eff.unbiased() ? "MIS weights for the temporal pair"
+                                      : "confidence-only temporal weights, as in the ReSTIR DI tutorial (biased)"));
   out.push_back(make("confidence_cap", asked(req.has_confidence_cap(), format_float(req.confidence_cap())),
-                     format_float(eff.confidence_cap()), method.reuse,
-                     method.reuse ? "temporal confidence is clamped to this" : no_reuse));
+                     format_float(eff.confidence_cap()), temporal,
+                     !method.reuse ? no_reuse : temporal ? "temporal confidence is clamped to this" : no_temporal));
   out.push_back(make("spatial_neighbors", asked(req.has_spatial_neighbors(), u(req.spatial_neighbors())),
-                     u(eff.spatial_neighbors()), method.reuse, method.reuse ? "front layer only" : no_reuse));
+                     u(eff.spatial_neighbors()), method.reuse && eff.spatial_reuse(),
+                     !method.reuse ? no_reuse
+                     : !eff.spatial_reuse() ? no_spatial
+                     : method.layers ? "neighbours per pixel (front layer only)" : "neighbours resampled per pixel"));
   out.push_back(make("spatial_radius", asked(req.has_spatial_radius(), format_float(req.spatial_radius())),
-                     format_float(eff.spatial_radius()), method.reuse, method.reuse ? "pixels" : no_reuse));
+                     format_float(eff.spatial_radius()), spatial,
+                     !method.reuse ? no_reuse : spatial ? "pixels around each pixel where neighbours are picked" : no_spatial));
   out.push_back(make("initial_candidates", asked(req.has_initial_candidates(), u(req.initial_candidates())),
                      u(eff.initial_candidates()), method.reuse, method.reuse ? "N_init paths per canonical sample" : no_reuse));
+  out.push_back(make("light_candidates", asked(req.has_light_candidates(), u(req.light_candidates())),
+                     u(eff.light_candidates()), method.reuse,
+                     method.reuse ? "next-event-estimation candidates per path vertex" : no_reuse));
 
   // LoD mapping: decided from the scene when auto.
   {

@@ -18,6 +18,12 @@ void fill_statistics(const render::FrameStats& s, v1::FrameStatistics* out) {
   }
   out->set_tlas_builds(s.tlas_builds);
   out->set_tlas_refits(s.tlas_refits);
+  // Only the methods with reuse count shifts; pt leaves both empty and the message absent.
+  if (!s.reuse.empty() || !s.shift_failures.empty()) {
+    auto* reuse = out->mutable_reuse();
+    for (const auto& [name, n] : s.reuse) (*reuse->mutable_counters())[name] = n;
+    for (const auto& [reason, n] : s.shift_failures) (*reuse->mutable_shift_failures())[reason] = n;
+  }
 }
 
 v1::Frame make_frame_message(const RenderedFrame& f) {

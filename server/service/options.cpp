@@ -22,9 +22,10 @@ void check_range(bool has, uint64_t v, uint64_t lo, uint64_t hi, const std::stri
                  (limit.empty() ? "" : " (" + limit + ")"));
 }
 
-void check_float(bool has, float v, float lo, float hi, const std::string& field) {
+void check_float(bool has, float v, float lo, float hi, const std::string& field, const std::string& unit = "") {
   if (has && (!std::isfinite(v) || v < lo || v > hi))
-    fail_invalid(field + " = " + format_float(v) + " is outside [" + format_float(lo) + ", " + format_float(hi) + "]");
+    fail_invalid(field + " = " + format_float(v) + " is outside [" + format_float(lo) + ", " + format_float(hi) + "]" +
+                 (unit.empty() ? "" : " " + unit));
 }
 
 void check_enum(bool has, int v, bool (*valid)(int), const std::string& field, const std::string& names) {
@@ -37,6 +38,7 @@ const std::vector<MethodTraits>& known_methods() {
   static const std::vector<MethodTraits> methods = {
       {"pt", false, false, false},
       {"restir-gather", true, false, false},
+      {"restir-di", true, false, false},
       {"restir-splat", true, true, false},
       {"restir-splat-backup", true, true, false},
       {"restir-multilayer", true, true, true},
@@ -68,12 +70,36 @@ void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, cons
   check_enum(o.has_lod_mapping(), o.lod_mapping(), &v1::LodMapping_IsValid, p + "lod_mapping",
                              "LOD_MAPPING_AUTO, LOD_MAPPING_OFF, LOD_MAPPING_UV");
   check_range(o.has_layers(), o.layers(), 0, 8, p + "layers", "0 = auto");
-  check_float(o.has_confidence_cap(), o.confidence_cap(), 1.0f, 1e6f, p + "confidence_cap");
-  check_range(o.has_spatial_neighbors(), o.spatial_neighbors(), 0, 32, p + "spatial_neighbors");
-  check_float(o.has_spatial_radius(), o.spatial_radius(), 0.0f, 512.0f, p + "spatial_radius");
+  // The ranges of render::RestirOptions::validate.
+  check_float(o.has_confidence_cap(), o.confidence_cap(), 1.0f, 1000.0f, p + "confidence_cap");
+  check_range(o.has_spatial_neighbors(), o.spatial_neighbors(), 0, 8, p + "spatial_neighbors");
+  check_float(o.has_spatial_radius(), o.spatial_radius(), 1.0f, 256.0f, p + "spatial_radius", "pixels");
   check_range(o.has_initial_candidates(), o.initial_candidates(), 1, 64, p + "initial_candidates");
+  check_range(o.has_light_candidates(), o.light_candidates(), 1, 32, p + "light_candidates");
   check_range(o.has_splats_per_frame(), o.splats_per_frame(), 1, 64, p + "splats_per_frame");
   check_float(o.has_exposure(), o.exposure(), -64.0f, 64.0f, p + "exposure");
+}
+
+void check_method_options(const MethodTraits& method, const v1::RenderOptions& o, const std::string& field) {
+  if (method.reuse && o.has_spp() && o.spp() != 1)
+    fail_invalid(field + ".spp = " + std::to_string(o.spp()) + " but method " + method.name +
+                 " keeps one reservoir per pixel and renders 1 sample per pixel per frame (spp must be 1); use " + field +
+                 ".initial_candidates for more candidates per frame");
+}
+
+render::RestirOptions restir_options(const v1::RenderOptions& e) {
+  render::RestirOptions r;
+  r.shift = shift_name(e.shift());
+  r.mis = mis_name(e.mis());
+  r.unbiased = e.unbiased();
+  r.temporal = e.temporal_reuse();
+  r.spatial = e.spatial_reuse();
+  r.confidence_cap = e.confidence_cap();
+  r.spatial_neighbors = e.spatial_neighbors();
+  r.spatial_radius = e.spatial_radius();
+  r.initial_candidates = e.initial_candidates();
+  r.light_candidates = e.light_candidates();
+  return r;
 }
 
 void normalize(v1::RenderOptions& o) {
@@ -90,10 +116,16 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const Servic
   o.set_mis(v1::MIS_PAIRWISE);
   o.set_lod_mapping(v1::LOD_MAPPING_AUTO);
   o.set_layers(0);
-  o.set_confidence_cap(20.0f);
-  o.set_spatial_neighbors(3);
-  o.set_spatial_radius(30.0f);
-  o.set_initial_candidates(1);
+  // The ReSTIR defaults are render::RestirOptions'.
+  const render::RestirOptions restir;
+  o.set_confidence_cap(restir.confidence_cap);
+  o.set_spatial_neighbors(restir.spatial_neighbors);
+  o.set_spatial_radius(restir.spatial_radius);
+  o.set_initial_candidates(restir.initial_candidates);
+  o.set_light_candidates(restir.light_candidates);
+  o.set_temporal_reuse(restir.temporal);
+  o.set_spatial_reuse(restir.spatial);
+  o.set_unbiased(restir.unbiased);
   o.set_splats_per_frame(1);
   o.set_exposure(0.0f);
   o.MergeFrom(requested);  // proto3 optional: only fields that are set overwrite

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "render/renderer.h"
 #include "service/config.h"
 #include "strata/v1/render.pb.h"
 
@@ -26,10 +27,16 @@ const MethodTraits& check_method(const std::string& requested, const std::string
 
 // Range checks of the fields that are set; `field` prefixes the names ("options").
 void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, const std::string& field);
+// What `method` requires of the fields that are set (the restir-* methods render spp = 1); `field`
+// prefixes the names.
+void check_method_options(const MethodTraits& method, const v1::RenderOptions& o, const std::string& field);
 // Every field set: the requested value, else the default (max_depth at most limits.max_depth).
 v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const ServiceLimits& limits);
 // Enum fields set to UNSPECIFIED take their defaults.
 void normalize(v1::RenderOptions& o);
+
+// The renderer's ReSTIR options from effective options (every field set).
+render::RestirOptions restir_options(const v1::RenderOptions& effective);
 
 std::string shift_name(v1::Shift s);
 std::string mis_name(v1::Mis m);

@@ -30,6 +30,7 @@ grpc::Status RenderServiceImpl::CreateSession(grpc::ServerContext*, const v1::Cr
     if (!req->has_resolution()) fail_invalid("resolution is required (width and height in pixels)");
     check_resolution(req->resolution(), limits, "resolution");
     check_options(req->options(), limits, "options");
+    check_method_options(*spec.method, req->options(), "options");
     spec.requested = req->options();
     spec.options = with_defaults(req->options(), limits);
     spec.width = req->resolution().width();

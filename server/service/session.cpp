@@ -3,6 +3,7 @@
 #include <glm/glm.hpp>
 
 #include "include/frame_data.h"
+#include "service/input_checks.h"
 #include "service/scene_analysis.h"
 
 namespace strata::service {
@@ -13,6 +14,30 @@ double ms_between(Session::Clock::time_point a, Session::Clock::time_point b) {
 }
 
 std::string size_text(uint32_t w, uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+std::string text(const std::string& v) { return v; }
+std::string text(bool v) { return v ? "true" : "false"; }
+std::string text(uint32_t v) { return std::to_string(v); }
+std::string text(float v) { return format_float(v); }
+
+// "<option> changed from a to b" for every ReSTIR option that differs (the RenderOptions names).
+std::vector<std::string> restir_changes(const render::RestirOptions& a, const render::RestirOptions& b) {
+  std::vector<std::string> out;
+  auto field = [&](const char* name, const auto& x, const auto& y) {
+    if (x != y) out.push_back(std::string(name) + " changed from " + text(x) + " to " + text(y));
+  };
+  field("shift", a.shift, b.shift);
+  field("mis", a.mis, b.mis);
+  field("unbiased", a.unbiased, b.unbiased);
+  field("temporal_reuse", a.temporal, b.temporal);
+  field("spatial_reuse", a.spatial, b.spatial);
+  field("confidence_cap", a.confidence_cap, b.confidence_cap);
+  field("spatial_neighbors", a.spatial_neighbors, b.spatial_neighbors);
+  field("spatial_radius", a.spatial_radius, b.spatial_radius);
+  field("initial_candidates", a.initial_candidates, b.initial_candidates);
+  field("light_candidates", a.light_candidates, b.light_candidates);
+  return out;
+}
 
 void set_time(google::protobuf::Timestamp* t, std::chrono::system_clock::time_point tp) {
   const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(tp.time_since_epoch()).count();
@@ -38,6 +63,7 @@ Session::Session(std::string name, std::shared_ptr<const scene::Scene> scene, Se
   settings_.spp = spec_.options.spp();
   settings_.max_depth = spec_.options.max_depth();
   settings_.seed = spec_.seed;
+  settings_.restir = restir_options(spec_.options);
   decisions_ = decide(*spec_.method, spec_.requested, spec_.options, spec_.encodings, analysis_);
   frame_state_ = scene_->frame_state(0);
   idle_since_ = created_steady_;
@@ -127,6 +153,7 @@ void Session::apply_locked(const PendingInput& input, std::string& reset_reason)
   normalize(options);
   next.spp = options.spp();
   next.max_depth = options.max_depth();
+  next.restir = restir_options(options);
   if (input.resolution) std::tie(next.width, next.height) = *input.resolution;
 
   std::string changes;
@@ -136,6 +163,9 @@ void Session::apply_locked(const PendingInput& input, std::string& reset_reason)
   if (next.spp != settings_.spp) add("spp changed from " + std::to_string(settings_.spp) + " to " + std::to_string(next.spp));
   if (next.max_depth != settings_.max_depth)
     add("max_depth changed from " + std::to_string(settings_.max_depth) + " to " + std::to_string(next.max_depth));
+  if (method().reuse)  // pt does not use the ReSTIR options: they change nothing on the device
+    for (const auto& c : restir_changes(settings_.restir, next.restir)) add(c);
+  if (changes.empty()) settings_.restir = next.restir;
   if (!changes.empty()) {
     settings_ = next;
     renderer_.reset();
@@ -196,6 +226,11 @@ RenderedFrame Session::render(PendingInput input) {
   metrics_.inputs_coalesced.fetch_add(input.coalesced);
   f.held = GaugeHold(metrics_.buffered_frame_bytes, int64_t(f.result.image.rgba.size() * sizeof(float)));
   return f;
+}
+
+const MethodTraits& Session::method() const {
+  std::lock_guard lock(mu_);
+  return *spec_.method;
 }
 
 v1::Session Session::describe(const ServiceConfig& config) const {

@@ -73,6 +73,7 @@ class Session {
 
   const std::string& name() const { return name_; }
   const scene::Scene& scene() const { return *scene_; }
+  const MethodTraits& method() const;
   v1::Session describe(const ServiceConfig& config) const;
 
   // One stream at a time: false when another one is attached.

@@ -55,7 +55,18 @@ CONST_DEF uint COUNTER_RAYS_BOUNCE = 1u;
 CONST_DEF uint COUNTER_RAYS_SHADOW = 2u;
 CONST_DEF uint COUNTER_NONFINITE_REJECTED = 3u;
 CONST_DEF uint COUNTER_PATHS = 4u;
-CONST_DEF uint COUNTER_COUNT = 8u;
+// ReSTIR passes: rays each pass traced, shifts attempted and failed by reason (restir_data.h).
+CONST_DEF uint COUNTER_RAYS_INITIAL = 5u;
+CONST_DEF uint COUNTER_RAYS_TEMPORAL = 6u;
+CONST_DEF uint COUNTER_RAYS_SPATIAL = 7u;
+CONST_DEF uint COUNTER_TEMPORAL_SHIFTS = 8u;        // shifts attempted (each direction counts)
+CONST_DEF uint COUNTER_SPATIAL_SHIFTS = 9u;
+CONST_DEF uint COUNTER_TEMPORAL_NO_HISTORY = 10u;   // pixels whose backprojection found no history
+CONST_DEF uint COUNTER_TEMPORAL_SELECTED = 11u;     // pixels whose output sample came from history
+CONST_DEF uint COUNTER_SPATIAL_SELECTED = 12u;      // pixels whose output sample came from a neighbour
+CONST_DEF uint COUNTER_TEMPORAL_FAIL = 16u;         // + reason, SHIFT_REASONS slots
+CONST_DEF uint COUNTER_SPATIAL_FAIL = 24u;          // + reason
+CONST_DEF uint COUNTER_COUNT = 32u;
 
 STRATA_NAMESPACE_END
 

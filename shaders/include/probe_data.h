@@ -17,8 +17,13 @@ struct GpuProbeHit {
   uint geometry;
   uint triangle;
   vec2 bary;
-  vec2 pad;
+  uint lod;          // LoD level in the instance record of the traced slot (the record moves with the TLAS)
+  uint pad;
 };
+
+// Specialization constant of ray_probe: trace the previous frame's slot (BINDING_TLAS_PREV and
+// BINDING_INSTANCES_PREV) instead of the current one.
+#define PROBE_SPEC_PREVIOUS 0
 
 STRATA_NAMESPACE_END
 

@@ -64,8 +64,7 @@ bool trace_visible(vec3 origin, vec3 dir, float t_max) {
   return rayQueryGetIntersectionTypeEXT(rq, true) == gl_RayQueryCommittedIntersectionNoneEXT;
 }
 
-SurfaceHit load_hit(RayHit h) {
-  GpuInstance inst = b_instances[h.instance];
+SurfaceHit load_hit_with(GpuInstance inst, RayHit h) {
   GpuPrimitive prim = b_primitives[inst.primitive_base + h.geometry];
   uint base = prim.index_offset + 3u * h.triangle;
   GpuVertex v0 = b_vertices[prim.vertex_offset + b_indices[base]];
@@ -94,5 +93,58 @@ SurfaceHit load_hit(RayHit h) {
   s.material = prim.material;
   return s;
 }
+
+SurfaceHit load_hit(RayHit h) { return load_hit_with(b_instances[h.instance], h); }
+
+// The same queries in either frame: `prev` selects the previous frame's TLAS and instance records
+// (bound only in passes compiled with STRATA_HISTORY; elsewhere there is one frame).
+#ifdef STRATA_HISTORY
+layout(set = 0, binding = BINDING_TLAS_PREV) uniform accelerationStructureEXT u_tlas_prev;
+layout(set = 0, binding = BINDING_INSTANCES_PREV, std430) readonly buffer InstancesPrev { GpuInstance b_instances_prev[]; };
+
+GpuInstance instance_in(bool prev, uint i) {
+  // (Not a ?: between the two blocks: glslang then stores one block's struct type into the other's.)
+  if (prev) return b_instances_prev[i];
+  return b_instances[i];
+}
+
+bool trace_closest_in(bool prev, vec3 origin, vec3 dir, float t_max, out RayHit hit) {
+  if (!prev) return trace_closest(origin, dir, t_max, hit);
+  rayQueryEXT rq;
+  rayQueryInitializeEXT(rq, u_tlas_prev, gl_RayFlagsOpaqueEXT, 0xFF, origin, 0.0, dir, t_max);
+  while (rayQueryProceedEXT(rq)) {
+  }
+  hit.t = 0.0;
+  hit.instance = 0u;
+  hit.geometry = 0u;
+  hit.triangle = 0u;
+  hit.bary = vec2(0.0);
+  if (rayQueryGetIntersectionTypeEXT(rq, true) != gl_RayQueryCommittedIntersectionTriangleEXT) return false;
+  hit.t = rayQueryGetIntersectionTEXT(rq, true);
+  hit.instance = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(rq, true));
+  hit.geometry = uint(rayQueryGetIntersectionGeometryIndexEXT(rq, true));
+  hit.triangle = uint(rayQueryGetIntersectionPrimitiveIndexEXT(rq, true));
+  hit.bary = rayQueryGetIntersectionBarycentricsEXT(rq, true);
+  return true;
+}
+
+bool trace_visible_in(bool prev, vec3 origin, vec3 dir, float t_max) {
+  if (!prev) return trace_visible(origin, dir, t_max);
+  rayQueryEXT rq;
+  rayQueryInitializeEXT(rq, u_tlas_prev, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT, 0xFF,
+                        origin, 0.0, dir, t_max);
+  while (rayQueryProceedEXT(rq)) {
+  }
+  return rayQueryGetIntersectionTypeEXT(rq, true) == gl_RayQueryCommittedIntersectionNoneEXT;
+}
+#else
+GpuInstance instance_in(bool prev, uint i) { return b_instances[i]; }
+bool trace_closest_in(bool prev, vec3 origin, vec3 dir, float t_max, out RayHit hit) {
+  return trace_closest(origin, dir, t_max, hit);
+}
+bool trace_visible_in(bool prev, vec3 origin, vec3 dir, float t_max) { return trace_visible(origin, dir, t_max); }
+#endif
+
+SurfaceHit load_hit_in(bool prev, RayHit h) { return load_hit_with(instance_in(prev, h.instance), h); }
 
 #endif

@@ -49,6 +49,7 @@ struct GpuEmitter {
   vec4 p1_pmf;        // p1, probability of choosing this emitter (power / total power)
   vec4 p2_flags;      // p2, flags as float bits (MATERIAL_DOUBLE_SIDED)
   vec4 emission;      // rgb radiance
+  uvec4 surface;      // instance, geometry (primitive of its mesh), triangle, 1 if p1/p2 were swapped (re-wound)
 };
 
 // Walker/Vose alias table entry over emitters.
@@ -66,7 +67,7 @@ static_assert(sizeof(strata::gpu::GpuVertex) == 32);
 static_assert(sizeof(strata::gpu::GpuPrimitive) == 16);
 static_assert(sizeof(strata::gpu::GpuInstance) == 144);
 static_assert(sizeof(strata::gpu::GpuMaterial) == 48);
-static_assert(sizeof(strata::gpu::GpuEmitter) == 64);
+static_assert(sizeof(strata::gpu::GpuEmitter) == 80);
 static_assert(sizeof(strata::gpu::GpuAliasEntry) == 16);
 #endif
 #endif

@@ -1,7 +1,8 @@
 #version 460
 // Pass `ray_probe`: traces an explicit list of rays and returns each closest hit as the ray query
 // reports it (instance, primitive, triangle, barycentrics, t). Used to check the acceleration
-// structures against a CPU intersector and, by the service, to pick objects under a pixel.
+// structures against a CPU intersector and, by the service, to pick objects under a pixel; with
+// PROBE_SPEC_PREVIOUS it traces the previous frame's slot (tests of the scene history).
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
 
@@ -9,7 +10,10 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 #include "include/bindings.h"
 #include "include/probe_data.h"
+#define STRATA_HISTORY  // u_tlas_prev, b_instances_prev; a scene without history binds its one slot there
 #include "include/scene_bridge.glsl"
+
+layout(constant_id = PROBE_SPEC_PREVIOUS) const bool k_previous = false;
 
 layout(push_constant) uniform Dispatch { GpuDispatchConstants u_dispatch; };
 layout(set = 0, binding = BINDING_PROBE_RAYS, std430) readonly buffer Rays { GpuProbeRay b_rays[]; };
@@ -26,9 +30,13 @@ void main() {
   out_hit.geometry = 0u;
   out_hit.triangle = 0u;
   out_hit.bary = vec2(0.0);
-  out_hit.pad = vec2(0.0);
+  out_hit.lod = 0u;
+  out_hit.pad = 0u;
   rayQueryEXT rq;
-  rayQueryInitializeEXT(rq, u_tlas, gl_RayFlagsOpaqueEXT, 0xFF, r.origin_tmin.xyz, r.origin_tmin.w, r.dir_tmax.xyz, r.dir_tmax.w);
+  if (k_previous)
+    rayQueryInitializeEXT(rq, u_tlas_prev, gl_RayFlagsOpaqueEXT, 0xFF, r.origin_tmin.xyz, r.origin_tmin.w, r.dir_tmax.xyz, r.dir_tmax.w);
+  else
+    rayQueryInitializeEXT(rq, u_tlas, gl_RayFlagsOpaqueEXT, 0xFF, r.origin_tmin.xyz, r.origin_tmin.w, r.dir_tmax.xyz, r.dir_tmax.w);
   while (rayQueryProceedEXT(rq)) {
   }
   if (rayQueryGetIntersectionTypeEXT(rq, true) == gl_RayQueryCommittedIntersectionTriangleEXT) {
@@ -37,6 +45,7 @@ void main() {
     out_hit.geometry = uint(rayQueryGetIntersectionGeometryIndexEXT(rq, true));
     out_hit.triangle = uint(rayQueryGetIntersectionPrimitiveIndexEXT(rq, true));
     out_hit.bary = rayQueryGetIntersectionBarycentricsEXT(rq, true);
+    out_hit.lod = k_previous ? b_instances_prev[out_hit.instance].lod : b_instances[out_hit.instance].lod;
   }
   b_hits[i] = out_hit;
 }

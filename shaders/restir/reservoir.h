@@ -7,6 +7,15 @@
 // along it so that the BSDF at x_k can be re-evaluated for a new predecessor (reconnection shift).
 // Positions are never stored in fp16: barycentrics are f32; radiance is f32 because emitters may
 // exceed fp16's 65504 (the `stiff` scene has 1e6); the confidence weight and time are 16-bit.
+//
+// Shift bookkeeping (Lin et al. 2022 hybrid shift, as strata defines it in restir/path_space.glsl):
+// the subpixel jitter and lens sample are replayed exactly (identity shift in those dimensions);
+// vertices x_2 .. x_{k-1} are replayed from `seed`; x_k and everything after it is kept. `density`
+// is the path's replay density: the product of the BSDF densities of the replayed directions over
+// (cos theta_k / |x_k - x_{k-1}|^2) * area(x_k's triangle) when the path reconnects, so that every
+// shift's Jacobian is density(base) / density(offset). `light_pdf_end` is the NEE density of the
+// last vertex as seen from x_{n-1}, which the MIS weight of the path's technique needs when
+// x_{n-1} = x_k is re-entered from a new direction.
 #ifndef STRATA_RESTIR_RESERVOIR_H
 #define STRATA_RESTIR_RESERVOIR_H
 #include "include/lang.h"
@@ -24,7 +33,7 @@ CONST_DEF uint SAMPLE_VALID = 1u;         // the reservoir holds a sample
 CONST_DEF uint SAMPLE_EMITTER_HIT = 2u;   // the path ends by hitting an emitter (not by NEE)
 CONST_DEF uint SAMPLE_ESCAPED = 4u;       // the path ends in the environment
 CONST_DEF uint SAMPLE_NEE = 8u;           // the last vertex was chosen by next-event estimation
-CONST_DEF uint SAMPLE_XK_IS_LAST = 16u;   // x_k is the path's last vertex (direct lighting at x_{k-1})
+CONST_DEF uint SAMPLE_XK_IS_LAST = 16u;   // x_k is the path's last vertex (k == segments)
 
 struct SurfacePoint {
   uint instance;   // SURFACE_NONE: no surface
@@ -43,8 +52,11 @@ struct PathSample {
   uint segments;          // number of path segments (path length)
   uint flags;             // SAMPLE_*
   uint seed;              // random-replay seed of the hybrid shift (Lin et al. 2022)
-  vec2 lens;              // thin-lens sample in [0,1)^2
+  vec2 lens;              // thin-lens sample in [0,1)^2 (stored as unorm16: generated already quantized)
   float time;             // time within the shutter in [0,1)
+  vec2 jitter;            // subpixel position in [0,1)^2 (box filter), f32
+  float density;          // replay density (see above)
+  float light_pdf_end;    // NEE solid-angle density of the last vertex from x_{n-1} (0: not NEE-able)
 };
 
 struct Reservoir {
@@ -54,13 +66,14 @@ struct Reservoir {
   float p_hat;       // target function value of y in its own pixel, cached
 };
 
-// 80 bytes: five 16-byte words (DESIGN.md budget: <= 96).
+// 96 bytes: six 16-byte words (DESIGN.md budget: <= 96).
 struct PackedReservoir {
   uvec4 x1;          // instance|geometry, triangle, bary.x, bary.y
   uvec4 xk;          // instance|geometry, triangle, bary.x, bary.y
   uvec4 radiance;    // xk_radiance rgb (f32), packed xk_direction (octahedral snorm16x2)
   uvec4 weights;     // ucw (f32), p_hat (f32), seed, half2(confidence, time)
   uvec4 meta;        // k | length << 8 | flags << 16 | lod1 << 24 | lodk << 28, lens (unorm16x2), 0, 0
+  uvec4 shift;       // jitter.x, jitter.y, density, light_pdf_end (f32)
 };
 
 INLINE SurfacePoint surface_none() {
@@ -121,6 +134,8 @@ INLINE PackedReservoir pack_reservoir(Reservoir r) {
   uint meta = (r.y.k & 0xFFu) | ((r.y.segments & 0xFFu) << 8u) | ((r.y.flags & 0xFFu) << 16u) | ((r.y.x1.lod & 0xFu) << 24u) |
               ((r.y.xk.lod & 0xFu) << 28u);
   p.meta = uvec4(meta, packUnorm2x16(r.y.lens), 0u, 0u);
+  p.shift = uvec4(floatBitsToUint(r.y.jitter.x), floatBitsToUint(r.y.jitter.y), floatBitsToUint(r.y.density),
+                  floatBitsToUint(r.y.light_pdf_end));
   return p;
 }
 
@@ -141,12 +156,15 @@ INLINE Reservoir unpack_reservoir(PackedReservoir p) {
   r.y.segments = (meta >> 8u) & 0xFFu;
   r.y.flags = (meta >> 16u) & 0xFFu;
   r.y.lens = unpackUnorm2x16(p.meta.y);
+  r.y.jitter = vec2(uintBitsToFloat(p.shift.x), uintBitsToFloat(p.shift.y));
+  r.y.density = uintBitsToFloat(p.shift.z);
+  r.y.light_pdf_end = uintBitsToFloat(p.shift.w);
   return r;
 }
 
 STRATA_NAMESPACE_END
 
 #ifdef __cplusplus
-static_assert(sizeof(strata::gpu::PackedReservoir) == 80, "DESIGN.md section 3: <= 96 bytes per reservoir");
+static_assert(sizeof(strata::gpu::PackedReservoir) == 96, "DESIGN.md section 3: <= 96 bytes per reservoir");
 #endif
 #endif

@@ -16,6 +16,13 @@ struct LightSample {
   float distance;     // to the sampled point; infinite for the environment
   vec3 radiance;      // emitted towards the shading point (0 if it sees the back face)
   float pdf;          // solid angle, including the selection probability
+  // The sampled point as a surface point (what a ReSTIR path sample stores), unset for the environment.
+  uint instance;
+  uint geometry;
+  uint triangle;
+  vec2 bary;          // hit-convention barycentrics (weights of the triangle's vertices 1 and 2)
+  float area;         // render-space triangle area
+  float cos_light;    // |cos| at the emitter towards the shading point
 };
 
 // Power-proportional selection probability that light sampling assigns to an emitter hit by
@@ -39,6 +46,12 @@ bool sample_light(vec3 x, vec3 u, GpuFrameConstants f, out LightSample ls) {
   ls.distance = 0.0;
   ls.radiance = vec3(0.0);
   ls.pdf = 0.0;
+  ls.instance = 0xFFFFFFFFu;
+  ls.geometry = 0u;
+  ls.triangle = 0u;
+  ls.bary = vec2(0.0);
+  ls.area = 0.0;
+  ls.cos_light = 1.0;
   if (u.z < f.env_select_prob || f.emitter_count == 0u) {
     if (!(f.env_select_prob > 0.0)) return false;
     ls.direction = sample_uniform_sphere(u.xy);
@@ -75,6 +88,12 @@ bool sample_light(vec3 x, vec3 u, GpuFrameConstants f, out LightSample ls) {
   bool double_sided = (floatBitsToUint(e.p2_flags.w) & MATERIAL_DOUBLE_SIDED) != 0u;
   if (cos_light <= 0.0 && !double_sided) return false;  // one-sided emitter seen from behind
   ls.radiance = e.emission.rgb;
+  ls.instance = e.surface.x;
+  ls.geometry = e.surface.y;
+  ls.triangle = e.surface.z;
+  ls.bary = e.surface.w != 0u ? b.yx : b;  // undo the re-winding of mirrored instances
+  ls.area = e.p0_area.w;
+  ls.cos_light = abs(cos_light);
   float pmf = (1.0 - f.env_select_prob) * e.p1_pmf.w;
   ls.pdf = emitter_pdf_solid_angle(pmf, e.p0_area.w, dist, cos_light);
   return ls.pdf > 0.0 && !isinf(ls.pdf);

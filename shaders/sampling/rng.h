@@ -39,5 +39,15 @@ INLINE vec2 rng_next_float2(INOUT(Rng) r) {
   return vec2(a, b);
 }
 
+// Random numbers addressed by dimension: the hybrid shift replays a path by asking for the same
+// dimensions of the same key (Lin et al. 2022, random replay), whatever branches were taken before.
+INLINE uint rng_key(uint pixel, uint sample_index, uint frame, uint seed) {
+  return pcg_hash(pixel ^ pcg_hash(sample_index ^ pcg_hash(frame ^ pcg_hash(seed + 0x6A09E667u))));
+}
+
+INLINE float rng_dim(uint key, uint dim) {
+  return float(pcg_hash(key ^ pcg_hash(dim + 0x9E3779B9u)) >> 8u) * (1.0f / 16777216.0f);
+}
+
 STRATA_NAMESPACE_END
 #endif

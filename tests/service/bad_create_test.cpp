@@ -84,8 +84,8 @@ TEST_F(BadCreateTest, EveryBadRequestGetsItsStatusAndMessage) {
   add("oversize resolution", [](auto& r) { r.mutable_resolution()->set_width(1024); r.mutable_resolution()->set_height(1024); },
       invalid, "exceeds max_pixels = 307200");
   add("unknown method", [](auto& r) { r.set_method("magic"); }, invalid, "method = 'magic' is not a method");
-  add("method not available yet", [](auto& r) { r.set_method("restir-gather"); }, invalid,
-      "method 'restir-gather' is not available yet; available: pt");
+  add("method not available yet", [](auto& r) { r.set_method("restir-splat"); }, invalid,
+      "method 'restir-splat' is not available yet; available: pt, restir-gather, restir-di");
   add("spp 0", [](auto& r) { r.mutable_options()->set_spp(0); }, invalid, "options.spp = 0 is outside [1, 64] (max_spp)");
   add("spp over max_spp", [](auto& r) { r.mutable_options()->set_spp(65); }, invalid, "options.spp = 65 is outside [1, 64] (max_spp)");
   add("max_depth over the limit", [](auto& r) { r.mutable_options()->set_max_depth(33); }, invalid, "options.max_depth = 33");
@@ -94,7 +94,7 @@ TEST_F(BadCreateTest, EveryBadRequestGetsItsStatusAndMessage) {
   add("unknown shift", [](auto& r) { r.mutable_options()->set_shift(static_cast<v1::Shift>(7)); }, invalid,
       "options.shift = 7 is not one of");
   add("negative spatial radius", [](auto& r) { r.mutable_options()->set_spatial_radius(-1.0f); }, invalid,
-      "options.spatial_radius = -1 is outside [0, 512]");
+      "options.spatial_radius = -1 is outside [1, 256] pixels");
   add("unknown encoding", [](auto& r) { r.clear_encodings(); r.add_encodings(static_cast<v1::ImageEncoding>(9)); }, invalid,
       "encodings[0] = 9 is not an image encoding");
   add("encoding twice", [](auto& r) { r.add_encodings(v1::IMAGE_ENCODING_RAW_RGBA16F); }, invalid, "requested twice");

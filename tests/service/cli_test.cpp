@@ -95,6 +95,64 @@ TEST(CliTest, CameraPathScriptDrivesCameraLodAndResolution) {
   EXPECT_EQ(std::stoull(last["statistics"]["paths"].get<std::string>()), 40u * 30u * 3u);
 }
 
+TEST(CliTest, StrataStreamSendsRestirOptionsAndLogsReuse) {
+  TempDir dir;
+  Daemon daemon;
+  const auto r = run_process({strata_path(), "stream", "--server", daemon.address(), "--scene", "cornell", "--method",
+                              "restir-gather", "--width", "16", "--height", "16", "--frames", "2", "--encodings", "raw",
+                              "--shift", "reconnection", "--mis", "balance", "--confidence-cap", "10", "--spatial-neighbors",
+                              "2", "--spatial-radius", "12", "--initial-candidates", "2", "--light-candidates", "3",
+                              "--biased", "--out", (dir.path / "out").string()},
+                             120s);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("  reuse "), std::string::npos) << "no reuse in the log:\n" << r.output;
+  EXPECT_NE(r.output.find(" temporal.shifts="), std::string::npos) << r.output;
+  const auto doc = nlohmann::json::parse(read_file(dir.path / "out" / "frames.json"));
+  const auto& o = doc["session"]["options"];
+  EXPECT_EQ(doc["session"]["method"], "restir-gather");
+  EXPECT_EQ(o["shift"], "SHIFT_RECONNECTION");
+  EXPECT_EQ(o["mis"], "MIS_BALANCE");
+  EXPECT_EQ(o["confidence_cap"], 10.0);
+  EXPECT_EQ(o["spatial_neighbors"], 2);
+  EXPECT_EQ(o["spatial_radius"], 12.0);
+  EXPECT_EQ(o["initial_candidates"], 2);
+  EXPECT_EQ(o["light_candidates"], 3);
+  EXPECT_EQ(o["unbiased"], false);
+  EXPECT_EQ(o["temporal_reuse"], true);
+  EXPECT_EQ(o["spatial_reuse"], true);
+  ASSERT_EQ(doc["frames"].size(), 2u);
+  const auto& reuse = doc["frames"][1]["statistics"]["reuse"];
+  ASSERT_TRUE(reuse.contains("counters")) << doc["frames"][1].dump();
+  EXPECT_GT(std::stoull(reuse["counters"]["temporal.shifts"].get<std::string>()), 0u);
+  EXPECT_TRUE(doc["summary"].contains("reuse"));
+
+  // Without spatial and temporal reuse, and a pt stream has no reuse anywhere.
+  const auto off = run_process({strata_path(), "stream", "--server", daemon.address(), "--scene", "cornell", "--method",
+                                "restir-gather", "--width", "16", "--height", "16", "--frames", "1", "--encodings", "raw",
+                                "--no-temporal", "--no-spatial", "--out", (dir.path / "off").string()},
+                               120s);
+  ASSERT_EQ(off.exit_code, 0) << off.output;
+  const auto off_doc = nlohmann::json::parse(read_file(dir.path / "off" / "frames.json"));
+  EXPECT_EQ(off_doc["session"]["options"]["temporal_reuse"], false);
+  EXPECT_EQ(off_doc["session"]["options"]["spatial_reuse"], false);
+  const auto pt = run_process({strata_path(), "stream", "--server", daemon.address(), "--scene", "cornell", "--width", "16",
+                               "--height", "16", "--frames", "1", "--encodings", "raw", "--out", (dir.path / "pt").string()},
+                              120s);
+  ASSERT_EQ(pt.exit_code, 0) << pt.output;
+  EXPECT_EQ(pt.output.find("temporal.shifts"), std::string::npos) << pt.output;
+  const auto pt_doc = nlohmann::json::parse(read_file(dir.path / "pt" / "frames.json"));
+  EXPECT_FALSE(pt_doc["frames"][0]["statistics"].contains("reuse"));
+  EXPECT_FALSE(pt_doc["summary"].contains("reuse"));
+
+  // The server's refusal of spp != 1 reaches the user.
+  const auto spp = run_process({strata_path(), "stream", "--server", daemon.address(), "--scene", "cornell", "--method",
+                                "restir-gather", "--spp", "4", "--width", "16", "--height", "16", "--frames", "1", "--out",
+                                (dir.path / "spp").string()},
+                               60s);
+  EXPECT_NE(spp.exit_code, 0);
+  EXPECT_NE(spp.output.find("CreateSession: INVALID_ARGUMENT: options.spp = 4"), std::string::npos) << spp.output;
+}
+
 TEST(CliTest, StrataStreamReportsTheServersError) {
   TempDir dir;
   Daemon daemon;

@@ -1,4 +1,4 @@
-// The packed reservoir (80 bytes) round-trips every field: ids and barycentrics exactly, radiance
+// The packed reservoir (96 bytes) round-trips every field: ids and barycentrics exactly, radiance
 // exactly (f32, beyond fp16's range), directions to octahedral snorm16 precision.
 #include <gtest/gtest.h>
 
@@ -23,6 +23,9 @@ Reservoir sample_reservoir(Rng& rng) {
   r.y.seed = 0xDEADBEEFu;
   r.y.lens = vec2(0.25f, 0.75f);
   r.y.time = 0.5f;
+  r.y.jitter = vec2(0.123456789f, 0.987654321f);
+  r.y.density = 3.5e-7f;
+  r.y.light_pdf_end = 1234.5f;
   r.ucw = 3.25e-5f;
   r.confidence = 20.0f;
   r.p_hat = 1.5e7f;
@@ -54,6 +57,10 @@ TEST(RestirReservoir, PackedRoundTrip) {
     EXPECT_NEAR(u.y.lens.x, 0.25f, 1.0f / 65535.0f);
     EXPECT_NEAR(u.y.lens.y, 0.75f, 1.0f / 65535.0f);
     EXPECT_FLOAT_EQ(u.y.time, 0.5f);
+    EXPECT_EQ(u.y.jitter.x, r.y.jitter.x);
+    EXPECT_EQ(u.y.jitter.y, r.y.jitter.y);
+    EXPECT_EQ(u.y.density, r.y.density);
+    EXPECT_EQ(u.y.light_pdf_end, r.y.light_pdf_end);
     EXPECT_EQ(u.ucw, r.ucw);
     EXPECT_EQ(u.p_hat, r.p_hat);
     EXPECT_FLOAT_EQ(u.confidence, 20.0f);

@@ -1,0 +1,239 @@
+#version 460
+// Pass `initial` (DESIGN.md section 2; RS-main 3.4): the canonical sample of each pixel by
+// resampled importance sampling over the sub-paths of N_init paths. Each path is the path
+// tracer's (NEE with `light_candidates` samples per vertex, BSDF sampling, power-heuristic MIS);
+// every NEE connection and every emitter or environment hit is one candidate, with resampling
+// weight w = m_i p-hat(X) / p(X) = luminance of its MIS-weighted contribution over
+// N_init * (candidates of its technique) (RS-main Eq. 4 with W_X = 1/p). Russian roulette starts only
+// after the reconnection vertex x_k is fixed, so the replayed prefix never depends on it.
+#extension GL_EXT_ray_query : require
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+#include "include/scene_bridge.glsl"
+#include "restir/restir_pass.glsl"
+#include "restir/path_space.glsl"
+#include "sampling/light_sampling.glsl"
+
+const float RR_START_DEPTH = 3.0;
+const float RR_MAX_SURVIVAL = 0.95;
+
+uint g_rays = 0u;
+GrisState g_state;
+Reservoir g_selected;
+vec3 g_selected_f;
+Rng g_select_rng;
+
+// Streams one candidate: sample y with f(y) and its resampling weight.
+void offer(PathSample y, vec3 f, float w) {
+  float p_hat = luminance(f);
+  if (gris_stream(g_state, w, p_hat, 0.0, 0u, rng_next_float(g_select_rng))) {
+    g_selected.y = y;
+    g_selected_f = f;
+  }
+}
+
+PathSample sample_begin(uint key, vec2 jitter, vec2 lens) {
+  PathSample y = reservoir_empty().y;
+  y.seed = key;
+  y.jitter = jitter;
+  y.lens = lens;
+  y.flags = SAMPLE_VALID;
+  return y;
+}
+
+// One path of the initial estimator: streams all of its candidates.
+void trace_candidates(uvec2 pixel, uint key, float n_init) {
+  vec2 jitter = vec2(rng_dim(key, DIM_JITTER), rng_dim(key, DIM_JITTER + 1u));
+  // The lens sample is stored as unorm16, so it is drawn on that grid (restir/reservoir.h).
+  vec2 lens = unpackUnorm2x16(packUnorm2x16(vec2(rng_dim(key, DIM_LENS), rng_dim(key, DIM_LENS + 1u))));
+  vec3 origin;
+  vec3 dir;
+  primary_ray(u_frame.camera, vec2(pixel), jitter, lens, origin, dir);
+  PathSample y = sample_begin(key, jitter, lens);
+  RayHit h;
+  g_rays++;
+  if (!trace_closest(origin, dir, 1e30, h)) {
+    y.segments = 1u;
+    y.flags |= SAMPLE_ESCAPED;
+    y.density = 1.0;
+    offer(y, u_frame.environment.rgb, luminance(u_frame.environment.rgb) / n_init);
+    return;
+  }
+  Vertex v = load_vertex(false, h, dir);
+  y.x1 = v.point;
+  if (luminance(v.emission) > 0.0) {
+    PathSample e = y;
+    e.segments = 1u;
+    e.flags |= SAMPLE_EMITTER_HIT;
+    e.density = 1.0;
+    offer(e, v.emission, luminance(v.emission) / n_init);
+  }
+  float camera_distance = length(v.position);
+  float light_count = float(u_restir.light_candidates);
+
+  vec3 f_prefix = vec3(1.0);   // prod f_s |cos| over x_1 .. x_{i-1} (unweighted)
+  float pdf_path = 1.0;        // density of those directions, with Russian roulette
+  float pdf_replay = 1.0;      // densities of the directions the hybrid shift replays
+  uint kf = 0u;                // the reconnection vertex, once found
+  SurfacePoint xk = surface_none();
+  float density_k = 0.0;
+  vec3 suffix = vec3(1.0);     // prod f_s |cos| over x_{k+1} .. x_{i-1}
+  vec3 dir_k = vec3(0.0, 0.0, 1.0);
+
+  for (uint i = 1u; i < u_restir.max_segments; ++i) {
+    uint n = i + 1u;
+    // Next-event estimation: light_candidates connections from x_i.
+    for (uint j = 0u; j < u_restir.light_candidates; ++j) {
+      uint base = dim_vertex(i) + DIM_NEE + 3u * j;
+      LightSample ls;
+      vec3 ul = vec3(rng_dim(key, base), rng_dim(key, base + 1u), rng_dim(key, base + 2u));
+      if (!sample_light(v.position, ul, u_frame, ls)) continue;
+      // Grazing light samples are outside every path structure (path_vertex.glsl): energy at
+      // |cos| < SHIFT_MIN_COS, a 1e-6 fraction of a Lambertian emitter's output, is not sampled by NEE.
+      if (!isinf(ls.distance) && ls.cos_light < SHIFT_MIN_COS) continue;
+      vec3 fs = scatter(v, ls.direction);
+      if (!(luminance(fs) > 0.0)) continue;
+      float t_max = isinf(ls.distance) ? 1e30 : ls.distance * (1.0 - SHADOW_RAY_SHORTEN);
+      g_rays++;
+      if (!trace_visible(spawn(v), ls.direction, t_max)) continue;
+      float m = technique_weight(true, ls.pdf, scatter_pdf(v, ls.direction));
+      vec3 f = f_prefix * fs * ls.radiance * m;
+      PathSample c = y;
+      c.segments = n;
+      c.flags |= SAMPLE_NEE | (isinf(ls.distance) ? SAMPLE_ESCAPED : 0u);
+      if (kf != 0u) {
+        c.k = kf;
+        c.xk = xk;
+        c.density = density_k;
+        c.xk_direction = kf == i ? ls.direction : dir_k;
+        c.xk_radiance = kf == i ? ls.radiance : suffix * fs * ls.radiance * m;
+        c.light_pdf_end = ls.pdf;
+      } else {
+        // NEE's point is always the reconnection vertex when none came before (a replay of the
+        // light sample would find the same point: light sampling does not depend on x_i).
+        c.k = n;
+        c.flags |= SAMPLE_XK_IS_LAST;
+        c.xk_direction = ls.direction;
+        c.xk_radiance = ls.radiance;
+        c.light_pdf_end = ls.pdf;
+        if (isinf(ls.distance)) {
+          c.density = pdf_replay;
+        } else {
+          c.xk.instance = ls.instance;
+          c.xk.geometry = ls.geometry;
+          c.xk.triangle = ls.triangle;
+          c.xk.bary = ls.bary;
+          c.xk.lod = b_instances[ls.instance].lod;
+          c.density = pdf_replay / (ls.cos_light / (ls.distance * ls.distance) * ls.area);
+        }
+      }
+      offer(c, f, luminance(f) / (n_init * light_count * pdf_path * ls.pdf));
+    }
+
+    // BSDF sampling: continues the path, and is a candidate when it finds emission.
+    uint base = dim_vertex(i) + DIM_BSDF;
+    vec3 u = vec3(rng_dim(key, base), rng_dim(key, base + 1u), rng_dim(key, base + 2u));
+    vec3 wi;
+    vec3 weight;
+    float pdf;
+    if (!bsdf_sample(v.bsdf, v.wo, u, wi, weight, pdf)) break;
+    vec3 d = to_world(wi, v.t, v.b, v.ns);
+    if (dot(d, v.ng) <= 0.0) break;
+    vec3 fs = weight * pdf;
+    g_rays++;
+    bool hit = trace_closest(spawn(v), d, 1e30, h);
+    Vertex w;
+    float edge = 0.0;
+    vec3 le = u_frame.environment.rgb;
+    float pl = light_pdf_environment(false);
+    if (hit) {
+      w = load_vertex(false, h, d);
+      edge = length(w.position - v.position);
+      le = w.emission;
+      pl = light_pdf_emitter(false, w.material_emission, w.area, w.double_sided, edge, w.cos_in);
+    }
+    if (luminance(le) > 0.0) {
+      float m = technique_weight(false, pl, pdf);
+      vec3 f = f_prefix * fs * le * m;
+      PathSample c = y;
+      c.segments = n;
+      c.flags |= hit ? SAMPLE_EMITTER_HIT : SAMPLE_ESCAPED;
+      if (kf != 0u) {
+        c.k = kf;
+        c.xk = xk;
+        c.density = density_k;
+        c.xk_direction = kf == i ? d : dir_k;
+        c.xk_radiance = kf == i ? le : suffix * fs * le * m;
+        c.light_pdf_end = pl;
+      } else if (rule_end(v, !hit, edge, camera_distance, hit ? w.cos_in : 1.0)) {
+        c.k = n;
+        c.flags |= SAMPLE_XK_IS_LAST;
+        c.xk_direction = d;
+        c.xk_radiance = le;
+        c.light_pdf_end = pl;
+        if (hit) {
+          c.xk = w.point;
+          c.density = pdf_replay / (w.cos_in / (edge * edge) * w.area);
+        } else {
+          c.density = pdf_replay;
+        }
+      } else {
+        c.k = 0u;
+        c.density = pdf_replay * pdf;
+        c.light_pdf_end = pl;
+      }
+      offer(c, f, luminance(f) / (n_init * pdf_path * pdf));
+    }
+    if (!hit) break;
+
+    // Advance to x_{i+1}.
+    if (kf == i) dir_k = d;
+    if (kf != 0u && i > kf) suffix *= fs;
+    f_prefix *= fs;
+    pdf_path *= pdf;
+    if (kf == 0u && rule_intermediate(v, w, edge, camera_distance)) {
+      kf = i + 1u;
+      xk = w.point;
+      density_k = pdf_replay / (w.cos_in / (edge * edge) * w.area);
+      suffix = vec3(1.0);
+    }
+    if (kf == 0u) pdf_replay *= pdf;
+    if (kf != 0u && float(i) >= RR_START_DEPTH) {
+      vec3 beta = f_prefix / pdf_path;
+      float survive = min(max(beta.r, max(beta.g, beta.b)), RR_MAX_SURVIVAL);
+      if (rng_dim(key, dim_vertex(i) + DIM_RR) >= survive) break;
+      pdf_path *= survive;
+    }
+    v = w;
+  }
+}
+
+void main() {
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
+  uint index = pixel_index(pixel);
+  g_state = gris_begin();
+  g_selected = reservoir_empty();
+  g_selected_f = vec3(0.0);
+  g_select_rng = rng_init(index, 0x51EC7u, u_frame.frame_index, u_frame.seed);
+  float n_init = float(u_restir.initial_candidates);
+  for (uint p = 0u; p < u_restir.initial_candidates; ++p)
+    trace_candidates(pixel, rng_key(index, p, u_frame.frame_index, u_frame.seed), n_init);
+
+  Reservoir r = g_selected;
+  r.ucw = gris_ucw(g_state);  // RS-main Eq. 5
+  r.p_hat = g_state.selected_p_hat;
+  r.confidence = 1.0;
+  vec3 f = g_selected_f;
+  if (!(r.ucw > 0.0)) {
+    r = reservoir_empty();
+    r.confidence = 1.0;
+    f = vec3(0.0);
+  }
+  store_output(index, r, f);
+  if (g_state.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], g_state.rejected);
+  atomicAdd(b_counters[COUNTER_RAYS_INITIAL], g_rays);
+  atomicAdd(b_counters[COUNTER_PATHS], u_restir.initial_candidates);
+}

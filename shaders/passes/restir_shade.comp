@@ -1,0 +1,31 @@
+#version 460
+// Pass `shade` (DESIGN.md section 2): each pixel's estimate f(Y) W_Y from its final reservoir
+// (GRIS, RS-main Eq. 5), added to the accumulation buffer as one sample.
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+#include "include/bindings.h"
+#include "include/frame_data.h"
+#include "restir/reservoir.h"
+
+layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
+layout(set = 0, binding = BINDING_COUNTERS, std430) buffer Counters { uint b_counters[]; };
+layout(set = 0, binding = BINDING_RESERVOIRS_IN, std430) readonly buffer ReservoirsIn { PackedReservoir b_in[]; };
+layout(set = 0, binding = BINDING_CONTRIBUTION, std430) readonly buffer Contribution { vec4 b_contribution[]; };
+layout(set = 0, binding = BINDING_ACCUM, std430) buffer Accum { vec4 b_accum[]; };
+
+void main() {
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
+  uint index = pixel.y * u_frame.width + pixel.x;
+  Reservoir r = unpack_reservoir(b_in[index]);
+  vec3 l = vec3(0.0);
+  if ((r.y.flags & SAMPLE_VALID) != 0u) l = b_contribution[index].rgb * r.ucw;
+  // DESIGN.md section 6: a non-finite or negative estimate never reaches a pixel; it is counted.
+  if (any(isnan(l)) || any(isinf(l)) || any(lessThan(l, vec3(0.0)))) {
+    atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], 1u);
+    l = vec3(0.0);
+  }
+  b_accum[index] += vec4(l, 1.0);
+}

@@ -1,0 +1,155 @@
+#version 460
+// Pass `spatial` (DESIGN.md section 2; Lin et al. 2022 section 7): N neighbours in a disk of
+// `spatial_radius` pixels, chosen independently of the samples, are shifted into this pixel and
+// resampled with its own reservoir. MIS is either the generalized balance heuristic over all
+// N + 1 domains (RS-main Eq. 6/7; every candidate is shifted into every other domain: O(N^2)
+// shifts) or confidence-weighted pairwise MIS (restir/gris.h; O(N) shifts).
+#extension GL_EXT_ray_query : require
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+#include "include/scene_bridge.glsl"
+#include "restir/restir_pass.glsl"
+#include "restir/path_space.glsl"
+
+layout(set = 0, binding = BINDING_RESERVOIRS_IN, std430) readonly buffer ReservoirsIn { PackedReservoir b_in[]; };
+
+const uint MAX_NEIGHBORS = 8u;
+
+uint g_rays = 0u;
+
+float confidence_of(Reservoir r) { return confidence_capped(r.confidence, u_restir.confidence_cap); }
+
+void main() {
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
+  uint index = pixel_index(pixel);
+  Reservoir centre = unpack_reservoir(b_in[index]);
+  vec3 f_centre = b_contribution[index].rgb;
+  bool centre_valid = reservoir_valid(centre);
+  float c_c = confidence_of(centre);
+
+  // Neighbours: uniform in the disk, rounded to pixels, inside the image and not this pixel.
+  Rng rng = rng_init(index, 0x5A71A1u, u_frame.frame_index, u_frame.seed);
+  uint count = 0u;
+  uint nb[MAX_NEIGHBORS];
+  float c_total = c_c;
+  for (uint j = 0u; j < min(u_restir.spatial_neighbors, MAX_NEIGHBORS); ++j) {
+    vec2 o = sample_concentric_disk(rng_next_float2(rng)) * u_restir.spatial_radius;
+    ivec2 p = ivec2(pixel) + ivec2(round(o));
+    if (p.x < 0 || p.y < 0 || p.x >= int(u_frame.width) || p.y >= int(u_frame.height) || p == ivec2(pixel)) continue;
+    nb[count] = pixel_index(uvec2(p));
+    c_total += confidence_of(unpack_reservoir(b_in[nb[count]]));
+    count++;
+  }
+  float k = float(count);
+  bool pairwise = u_restir.mis_mode == MIS_PAIRWISE;
+
+  // Shifts are jobs of one loop with a single call of shift_path (lavapipe compiles every inlined
+  // call site separately). Per neighbour j, a block of jobs:
+  //   0: y_j into this pixel (y'_j);
+  //   1 .. count-1 (balance only): y'_j into each other neighbour domain l (p-hat-from of l);
+  //   last: the centre sample into j's domain (for the centre's MIS weight).
+  uint block = pairwise ? 2u : count + 1u;
+  GrisState st = gris_begin();
+  float m_c = pairwise ? 0.0 : 1.0;
+  float balance_c = c_c * centre.p_hat;  // balance: denominator of the centre's weight
+  Reservoir rj = reservoir_empty();
+  PathSample yj_here = rj.y;
+  vec3 fj = vec3(0.0);
+  float p_here = 0.0;
+  float jac = 0.0;
+  float denom = 0.0;  // balance: denominator of y'_j's weight
+  Reservoir selected = centre;
+  vec3 f_selected = f_centre;
+  bool took_neighbour = false;
+  for (uint job = 0u; job < count * block; ++job) {
+    uint j = job / block;
+    uint sub = job % block;
+    bool centre_job = sub == block - 1u;
+    if (sub == 0u) {
+      rj = unpack_reservoir(b_in[nb[j]]);
+      rj.confidence = confidence_of(rj);
+      p_here = 0.0;
+      jac = 0.0;
+    }
+    // What to shift where; jobs whose input is absent are skipped.
+    uint target = nb[j];
+    PathSample y = rj.y;
+    bool run = reservoir_valid(rj);
+    if (centre_job) {
+      y = centre.y;
+      run = centre_valid;
+    } else if (sub > 0u) {
+      uint l = sub - 1u < j ? sub - 1u : sub;  // the other neighbours, skipping j
+      target = nb[l];
+      y = yj_here;
+      run = jac > 0.0;
+    } else {
+      target = index;
+    }
+    ShiftResult res;
+    res.reason = SHIFT_FAIL_ZERO;
+    if (run) {
+      res = shift_path(false, vec2(target % u_frame.width, target / u_frame.width), y, false);
+      g_rays += res.rays;
+      atomicAdd(b_counters[COUNTER_SPATIAL_SHIFTS], 1u);
+      if (res.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_SPATIAL_FAIL + res.reason], 1u);
+    }
+    bool ok = run && res.reason == SHIFT_OK;
+    if (sub == 0u) {
+      p_here = ok ? luminance(res.f) : 0.0;
+      jac = ok ? shift_jacobian(rj.y.density, res.density) : 0.0;
+      yj_here = rj.y;
+      yj_here.x1 = res.x1;
+      yj_here.density = res.density;
+      fj = res.f;
+      denom = jac > 0.0 ? c_c * p_here + rj.confidence * rj.p_hat / jac : 0.0;
+    } else if (!centre_job) {
+      // Balance: p-hat of domain l from y'_j (RS-main Eq. 7).
+      Reservoir rl = unpack_reservoir(b_in[target]);
+      if (ok) denom += confidence_of(rl) * p_hat_from(luminance(res.f), shift_jacobian(yj_here.density, res.density));
+    }
+    if (centre_job) {
+      float from_c = ok ? p_hat_from(luminance(res.f), shift_jacobian(centre.y.density, res.density)) : 0.0;
+      if (pairwise) m_c += mis_pairwise_canonical_term(rj.confidence, from_c, c_c, centre.p_hat, k, c_total);
+      else balance_c += rj.confidence * from_c;
+      // y'_j is complete: stream it (RS-main Eq. 4, w = m p-hat W |J|).
+      float m = 0.0;
+      if (jac > 0.0 && p_here > 0.0) {
+        float from_j = rj.p_hat / jac;  // p-hat_j(y_j) |dy_j/dy'_j| (RS-main Eq. 7)
+        m = pairwise ? mis_pairwise_neighbor(rj.confidence, from_j, c_c, p_here, k, c_total)
+                     : (denom > 0.0 ? rj.confidence * from_j / denom : 0.0);
+      }
+      if (gris_stream(st, m * p_here * rj.ucw * jac, p_here, rj.confidence, j + 1u, rng_next_float(rng))) {
+        selected = rj;
+        selected.y = yj_here;
+        f_selected = fj;
+        took_neighbour = true;
+      }
+    }
+  }
+  if (!pairwise) m_c = balance_c > 0.0 ? c_c * centre.p_hat / balance_c : 0.0;
+  if (count == 0u) m_c = 1.0;
+  if (gris_stream(st, m_c * centre.p_hat * centre.ucw, centre.p_hat, c_c, 0u, rng_next_float(rng))) {
+    selected = centre;
+    f_selected = f_centre;
+    took_neighbour = false;
+  }
+
+  Reservoir out_r = selected;
+  vec3 f = f_selected;
+  if (took_neighbour) atomicAdd(b_counters[COUNTER_SPATIAL_SELECTED], 1u);
+  out_r.p_hat = st.selected_p_hat;
+  out_r.ucw = gris_ucw(st);  // RS-main Eq. 5
+  out_r.confidence = st.confidence;
+  if (st.selected == GRIS_NONE) {
+    out_r = reservoir_empty();
+    out_r.confidence = st.confidence;
+    f = vec3(0.0);
+  }
+  if (st.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], st.rejected);
+  store_output(index, out_r, f);
+  atomicAdd(b_counters[COUNTER_RAYS_SPATIAL], g_rays);
+}

@@ -1,0 +1,161 @@
+#version 460
+// Pass `temporal`, gather mode (method restir-gather; Lin et al. 2022 section 7, as RS-main 3.3
+// writes GRIS): the current pixel-centre primary hit is backprojected with the previous camera and
+// object transforms to the previous pixel q; q's reservoir (frame t-1) is shifted into this pixel
+// (frame t) and resampled together with the canonical sample. MIS is the two-domain generalized
+// balance heuristic (RS-main Eq. 6/7): the canonical sample is shifted back into q in frame t-1
+// with the previous TLAS, transforms, camera and light totals, so both p-hat-from values are exact.
+// The biased option replaces this with the DI tutorial's confidence weights (its merge weight
+// p-hat_cur * W_prev * min(M_prev, M_max)) and heuristic validation (material, normal, position,
+// target ratio in [0.1, 10]).
+#extension GL_EXT_ray_query : require
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+#define STRATA_HISTORY 1
+#include "include/scene_bridge.glsl"
+#include "restir/restir_pass.glsl"
+#include "restir/path_space.glsl"
+
+layout(set = 0, binding = BINDING_RESERVOIRS_IN, std430) readonly buffer ReservoirsIn { PackedReservoir b_in[]; };
+
+uint g_rays = 0u;
+
+void count_shift(ShiftResult s) {
+  g_rays += s.rays;
+  atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
+  if (s.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + s.reason], 1u);
+}
+
+// Backprojection (DESIGN.md section 2): the previous pixel that saw the current pixel-centre hit's
+// surface point, through the previous camera and the previous transform of its object.
+bool backproject(uvec2 pixel, out uvec2 q, out SurfaceHit centre) {
+  vec3 origin;
+  vec3 dir;
+  primary_ray(u_frame.camera, vec2(pixel), vec2(0.5), vec2(0.5), origin, dir);
+  RayHit h;
+  g_rays++;
+  if (!trace_closest(origin, dir, 1e30, h)) return false;
+  centre = load_hit(h);
+  GpuInstance before = instance_in(true, h.instance);
+  if (before.lod != b_instances[h.instance].lod) return false;
+  vec3 p = load_hit_with(before, h).position;  // previous render space: the previous camera at the origin
+  GpuCamera cam = u_frame.prev_camera;
+  float z = dot(p, cam.forward.xyz);
+  if (!(z > 0.0)) return false;
+  float x = dot(p, cam.right.xyz) / (z * dot(cam.right.xyz, cam.right.xyz));
+  float y = dot(p, cam.up.xyz) / (z * dot(cam.up.xyz, cam.up.xyz));
+  vec2 s = vec2((x + 1.0) * 0.5 * float(u_frame.prev_width), (1.0 - y) * 0.5 * float(u_frame.prev_height));
+  if (!(s.x >= 0.0 && s.y >= 0.0 && s.x < float(u_frame.prev_width) && s.y < float(u_frame.prev_height))) return false;
+  q = uvec2(s);
+  return true;
+}
+
+// The tutorial's validation of a history sample for the current pixel (DI tutorial section 5).
+bool heuristic_valid(SurfaceHit centre, Reservoir h, float p_hat_current) {
+  if (h.y.x1.instance == SURFACE_NONE || h.y.x1.instance >= uint(b_instances.length())) return false;
+  RayHit x1;
+  x1.t = 0.0;
+  x1.instance = h.y.x1.instance;
+  x1.geometry = h.y.x1.geometry;
+  x1.triangle = h.y.x1.triangle;
+  x1.bary = h.y.x1.bary;
+  SurfaceHit s = load_hit(x1);
+  float ratio = p_hat_current / h.p_hat;
+  return s.material == centre.material && dot(s.geo_normal, centre.geo_normal) > 0.9 &&
+         length(s.position - centre.position) < 0.05 * length(centre.position) && ratio >= 0.1 && ratio <= 10.0;
+}
+
+void main() {
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
+  uint index = pixel_index(pixel);
+  Reservoir canonical = unpack_reservoir(b_out[index]);
+  vec3 f_canonical = b_contribution[index].rgb;
+
+  uvec2 q;
+  SurfaceHit centre;
+  Reservoir history = reservoir_empty();
+  bool have_history = backproject(pixel, q, centre);
+  // Whether domain q takes part depends on geometry only. An empty reservoir in q still claims its
+  // MIS share of the canonical sample (its confidence counts), it just brings no candidate.
+  if (have_history) history = unpack_reservoir(b_in[q.y * u_frame.prev_width + q.x]);
+  if (!have_history || !(history.confidence > 0.0)) {
+    atomicAdd(b_counters[COUNTER_TEMPORAL_NO_HISTORY], 1u);
+    atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], g_rays);
+    return;  // the canonical reservoir stays in place
+  }
+  bool moved = (u_frame.history_flags & HISTORY_SCENE_MOVED) != 0u;
+  float c_c = canonical.confidence;
+  float c_h = confidence_capped(history.confidence, u_restir.confidence_cap);  // RS-main 3.4
+
+  // Both shifts run through one call site (lavapipe compiles each inlined call separately):
+  // job 0, the history sample into this pixel (frame t); job 1, the canonical sample back into q
+  // (frame t-1), needed only for the unbiased MIS.
+  bool unbiased = (u_restir.flags & RESTIR_UNBIASED) != 0u;
+  ShiftResult fw;
+  fw.reason = SHIFT_FAIL_ZERO;
+  fw.f = vec3(0.0);
+  fw.density = 0.0;
+  fw.x1 = surface_none();
+  fw.rays = 0u;
+  float from_q = 0.0;
+  for (uint job = 0u; job < (unbiased ? 2u : 1u); ++job) {
+    bool back = job == 1u;
+    if (!back && !reservoir_valid(history)) {
+      fw = shift_fail(fw, SHIFT_FAIL_ZERO);
+      continue;
+    }
+    if (back && !reservoir_valid(canonical)) break;
+    ShiftResult s = shift_path(back, back ? vec2(q) : vec2(pixel), back ? canonical.y : history.y, moved);
+    count_shift(s);
+    if (!back) fw = s;
+    // p-hat from q of the canonical sample (RS-main Eq. 7): p-hat_q(T(y_c)) |dT/dy_c|.
+    else if (s.reason == SHIFT_OK) from_q = p_hat_from(luminance(s.f), shift_jacobian(canonical.y.density, s.density));
+  }
+  // The history sample in this pixel: w_h = m_h p-hat(y') W_h |dy'/dy| (RS-main Eq. 4).
+  float p_fw = fw.reason == SHIFT_OK ? luminance(fw.f) : 0.0;
+  float jacobian = fw.reason == SHIFT_OK ? shift_jacobian(history.y.density, fw.density) : 0.0;
+
+  float w_h;
+  float w_c;
+  if (unbiased) {
+    // p-hat from q of y': p-hat_q(y) |dy/dy'| = p-hat_q(y) / |dy'/dy|.
+    float m_h = jacobian > 0.0 ? mis_balance2(c_h, history.p_hat / jacobian, c_c, p_fw) : 0.0;
+    w_h = m_h * p_fw * history.ucw * jacobian;
+    float m_c = mis_balance2(c_c, canonical.p_hat, c_h, from_q);
+    w_c = m_c * canonical.p_hat * canonical.ucw;
+  } else {
+    // A history sample that fails validation is not merged, and its confidence is not counted.
+    bool valid = p_fw > 0.0 && heuristic_valid(centre, history, p_fw);
+    float total = valid ? c_c + c_h : c_c;
+    w_h = valid ? (c_h / total) * p_fw * history.ucw * jacobian : 0.0;
+    w_c = (c_c / total) * canonical.p_hat * canonical.ucw;
+  }
+
+  Rng rng = rng_init(index, 0x7E3A0u, u_frame.frame_index, u_frame.seed);
+  GrisState s = gris_begin();
+  gris_stream(s, w_c, canonical.p_hat, c_c, 0u, rng_next_float(rng));
+  gris_stream(s, w_h, p_fw, c_h, 1u, rng_next_float(rng));
+  Reservoir out_r = canonical;
+  vec3 f = f_canonical;
+  if (s.selected == 1u) {
+    out_r = history;
+    out_r.y.x1 = fw.x1;
+    out_r.y.density = fw.density;
+    f = fw.f;
+    atomicAdd(b_counters[COUNTER_TEMPORAL_SELECTED], 1u);
+  }
+  out_r.p_hat = s.selected_p_hat;
+  out_r.ucw = gris_ucw(s);  // RS-main Eq. 5
+  out_r.confidence = s.confidence;
+  if (s.selected == GRIS_NONE) {
+    out_r = reservoir_empty();
+    out_r.confidence = s.confidence;
+    f = vec3(0.0);
+  }
+  if (s.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], s.rejected);
+  store_output(index, out_r, f);
+  atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], g_rays);
+}

@@ -1,0 +1,202 @@
+// The shift of a path sample into a domain (pixel, frame): Lin et al. 2022's reconnection and
+// hybrid shifts in the form strata's path samples take (restir/reservoir.h).
+//
+// Sample space. A domain's integral is over the subpixel position (box filter, density 1), the lens
+// sample, and the directions of the path in solid angle; the target function is the luminance of
+//   f(x) = prod_{i=1}^{n-1} f_s(x_i) |cos theta_i| * L_e(x_n) * m_t(x)
+// where m_t is the MIS weight of the technique t (NEE or BSDF sampling) that produced the last
+// vertex: the technique is part of the sample, so both techniques' candidates partition the space.
+//
+// The shift. The offset path keeps the subpixel position and lens sample (Jacobian 1), replays the
+// BSDF directions at y_1 .. y_{k-2} from the sample's random numbers (Jacobian p(x)/p(y), Lin 2022
+// Eq. 41 — with the lobe-mixture density this is exact: in primary-sample space the map is the
+// identity), and reconnects y_{k-1} to the kept vertex x_k (Jacobian of the solid angle at y_{k-1},
+// cos theta_y / |x_k - y_{k-1}|^2 over the base path's, times the ratio of x_k's triangle areas when
+// x_k's object scaled). Everything after x_k is kept. With k = 0 the whole path is replayed. The
+// product of these factors is stored per path as its `density`, and every Jacobian is
+//   |dy/dx| = density(x) / density(y).
+// For the shift to be a bijection the offset path must have the same structure: its first
+// reconnectable vertex must be k again (else the shift fails, Lin 2022 section 6.2).
+//
+// Moving scenes. The kept suffix after x_k is only known through its radiance; when the scene moved
+// between the frames of the two domains, a sample with a non-empty suffix (0 < k < n) cannot be
+// evaluated exactly in the other frame, and the shift fails (SHIFT_FAIL_STALE) in both directions.
+#ifndef STRATA_PATH_SPACE_GLSL
+#define STRATA_PATH_SPACE_GLSL
+
+#include "restir/path_vertex.glsl"
+#include "restir/restir_data.h"
+#include "sampling/rng.h"
+
+struct ShiftResult {
+  uint reason;       // SHIFT_OK or SHIFT_FAIL_*
+  vec3 f;            // f of the offset path in the domain (rgb; its luminance is p-hat)
+  float density;     // replay density of the offset path
+  SurfacePoint x1;   // its primary hit
+  uint rays;
+};
+
+ShiftResult shift_fail(ShiftResult r, uint reason) {
+  r.reason = reason;
+  r.f = vec3(0.0);
+  r.density = 0.0;
+  return r;
+}
+
+Vertex load_vertex(bool prev, RayHit h, vec3 dir_in) {
+  return make_vertex(load_hit_in(prev, h), h, instance_in(prev, h.instance).lod, dir_in);
+}
+
+// Evaluates the sample y, shifted into the domain of `pixel` in the current (prev = false) or the
+// previous frame. suffix_changed: the scene moved between y's frame and the domain's frame.
+ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed) {
+  ShiftResult r;
+  r.reason = SHIFT_OK;
+  r.f = vec3(0.0);
+  r.density = 0.0;
+  r.x1 = surface_none();
+  r.rays = 0u;
+  uint n = y.segments;
+  uint k = y.k;
+  bool escaped = (y.flags & SAMPLE_ESCAPED) != 0u;
+  bool nee = (y.flags & SAMPLE_NEE) != 0u;
+  if (n == 0u || n > u_restir.max_segments || k > n || k == 1u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
+  if (suffix_changed && k != 0u && k < n) return shift_fail(r, SHIFT_FAIL_STALE);
+  // The pure reconnection shift replays only the camera sample and reconnects at x_2.
+  if (u_restir.shift_mode == SHIFT_RECONNECTION && n > 1u && k != 2u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
+
+  // One loop traces every segment found by replay: segment 0 is the camera ray (subpixel and lens
+  // sample kept), segment j >= 1 leaves y_j in the direction replayed from the sample's random
+  // numbers. With k >= 2 the loop ends at y_{k-1}; with k = 0 its last segment finds the path's end.
+  // (A single tracing call site: lavapipe inlines a BVH traversal per call site.)
+  uint last_traced = k >= 2u ? k - 2u : n - 1u;
+  vec3 origin;
+  vec3 dir;
+  primary_ray(camera_in(prev), pixel, y.jitter, y.lens, origin, dir);
+  vec3 f_prefix = vec3(1.0);
+  float density = 1.0;
+  float pdf = 0.0;
+  float camera_distance = 0.0;
+  vec3 le = vec3(0.0);      // k = 0: emission at the end
+  float pl = 0.0;           // k = 0: its light-sampling density
+  Vertex v;
+  for (uint j = 0u; j <= last_traced; ++j) {
+    if (j > 0u) {
+      uint base = dim_vertex(j) + DIM_BSDF;
+      vec3 u = vec3(rng_dim(y.seed, base), rng_dim(y.seed, base + 1u), rng_dim(y.seed, base + 2u));
+      vec3 wi;
+      vec3 weight;
+      if (!bsdf_sample(v.bsdf, v.wo, u, wi, weight, pdf)) return shift_fail(r, SHIFT_FAIL_REPLAY);
+      dir = to_world(wi, v.t, v.b, v.ns);
+      if (dot(dir, v.ng) <= 0.0) return shift_fail(r, SHIFT_FAIL_REPLAY);
+      origin = spawn(v);
+      f_prefix *= weight * pdf;
+      density *= pdf;
+    }
+    bool path_end = k == 0u && j == n - 1u;  // this segment must find the path's last vertex
+    RayHit h;
+    r.rays++;
+    if (!trace_closest_in(prev, origin, dir, 1e30, h)) {
+      if (!(path_end && escaped)) return shift_fail(r, j == 0u ? SHIFT_FAIL_PRIMARY : SHIFT_FAIL_REPLAY);
+      if (j > 0u && rule_end(v, true, 0.0, camera_distance, 1.0)) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
+      le = u_frame.environment.rgb;
+      pl = j > 0u ? light_pdf_environment(prev) : 0.0;
+      break;
+    }
+    if (path_end && escaped) return shift_fail(r, j == 0u ? SHIFT_FAIL_PRIMARY : SHIFT_FAIL_REPLAY);
+    Vertex w = load_vertex(prev, h, dir);
+    if (j == 0u) {
+      r.x1 = w.point;
+      camera_distance = length(w.position);
+      if (path_end) le = w.emission;
+    } else {
+      float edge = length(w.position - v.position);
+      if (path_end) {
+        if (rule_end(v, false, edge, camera_distance, w.cos_in)) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
+        le = w.emission;
+        pl = light_pdf_emitter(prev, w.material_emission, w.area, w.double_sided, edge, w.cos_in);
+      } else if (rule_intermediate(v, w, edge, camera_distance)) {
+        return shift_fail(r, SHIFT_FAIL_STRUCTURE);
+      }
+    }
+    v = w;
+  }
+
+  if (k >= 2u) {
+    // Reconnection of y_{k-1} = v to x_k.
+    vec3 d;
+    float dist = 0.0;
+    float geometry = 1.0;  // cos theta_k / dist^2 (1 for a direction to the environment)
+    float area = 1.0;
+    Vertex xk;
+    bool to_environment = escaped && k == n;
+    if (to_environment) {
+      d = y.xk_direction;
+    } else {
+      if (y.xk.instance >= uint(b_instances.length())) return shift_fail(r, SHIFT_FAIL_STALE);
+      GpuInstance inst = instance_in(prev, y.xk.instance);
+      if (inst.lod != y.xk.lod) return shift_fail(r, SHIFT_FAIL_STALE);
+      RayHit hk;
+      hk.t = 0.0;
+      hk.instance = y.xk.instance;
+      hk.geometry = y.xk.geometry;
+      hk.triangle = y.xk.triangle;
+      hk.bary = y.xk.bary;
+      SurfaceHit sk = load_hit_with(inst, hk);
+      vec3 e = sk.position - v.position;
+      float dist2 = dot(e, e);
+      if (!(dist2 > 0.0)) return shift_fail(r, SHIFT_FAIL_JACOBIAN);
+      dist = sqrt(dist2);
+      d = e / dist;
+      xk = make_vertex(sk, hk, inst.lod, d);
+      // A grazing x_k is excluded by the structure rules (NEE drops grazing light samples).
+      if (xk.cos_in < SHIFT_MIN_COS) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
+      geometry = xk.cos_in / dist2;
+      area = xk.area;
+      if (k < n) {
+        if (!rule_intermediate(v, xk, dist, camera_distance)) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
+      } else if (!nee) {
+        if (!rule_end(v, false, dist, camera_distance, xk.cos_in)) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
+      }
+    }
+    vec3 fs = scatter(v, d);
+    if (!(luminance(fs) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
+    vec3 tail;
+    if (k < n) {
+      vec3 fk = scatter(xk, y.xk_direction);
+      float m = 1.0;
+      if (k + 1u == n) m = technique_weight(nee, y.light_pdf_end, scatter_pdf(xk, y.xk_direction));
+      tail = fk * y.xk_radiance * m;
+    } else if (to_environment) {
+      if (!nee && !rule_end(v, true, 0.0, camera_distance, 1.0)) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
+      tail = u_frame.environment.rgb * technique_weight(nee, light_pdf_environment(prev), scatter_pdf(v, d));
+    } else {
+      float pl_k = light_pdf_emitter(prev, xk.material_emission, xk.area, xk.double_sided, dist, xk.cos_in);
+      tail = xk.emission * technique_weight(nee, pl_k, scatter_pdf(v, d));
+    }
+    if (!(luminance(tail) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
+    r.rays++;
+    float t_max = to_environment ? 1e30 : dist * (1.0 - SHADOW_RAY_SHORTEN);
+    if (!trace_visible_in(prev, spawn(v), d, t_max)) return shift_fail(r, SHIFT_FAIL_OCCLUDED);
+    r.f = f_prefix * fs * tail;
+    r.density = density / (geometry * area);
+  } else {
+    // k = 0: the loop replayed the whole path; a camera-seen end (n = 1) is not MIS-weighted.
+    r.f = f_prefix * le * (n == 1u ? 1.0 : technique_weight(false, pl, pdf));
+    r.density = density;
+  }
+  if (!(luminance(r.f) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
+  if (any(isnan(r.f)) || any(isinf(r.f)) || !(r.density > 0.0) || isinf(r.density)) return shift_fail(r, SHIFT_FAIL_JACOBIAN);
+  return r;
+}
+
+// Jacobian |dy/dx| of a shift from a path of replay density `base` to one of density `offset`,
+// bounded like every other Jacobian (thresholds.h); 0 fails the shift.
+float shift_jacobian(float base, float offset) {
+  if (!(base > 0.0) || !(offset > 0.0)) return 0.0;
+  float j = base / offset;
+  if (!(j >= 1.0 / SHIFT_MAX_JACOBIAN && j <= SHIFT_MAX_JACOBIAN)) return 0.0;
+  return j;
+}
+
+#endif

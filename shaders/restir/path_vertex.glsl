@@ -1,0 +1,138 @@
+// Path vertices as both the candidate generator (restir_initial) and the shifts (path_space.glsl)
+// see them, so that both apply exactly the same rules: the scattering function, the light densities
+// of each frame, the technique MIS weight and the reconnectability rules (DESIGN.md section 6).
+// Needs: scene_bridge.glsl, u_frame (GpuFrameConstants) and u_restir (GpuRestirConstants).
+#ifndef STRATA_PATH_VERTEX_GLSL
+#define STRATA_PATH_VERTEX_GLSL
+
+#include "material/bsdf.h"
+#include "restir/reservoir.h"
+#include "restir/thresholds.h"
+#include "sampling/mis.h"
+#include "sampling/ray_offset.h"
+#include "sampling/warp.h"
+
+// Random-number dimensions of a path (rng_dim): the camera, then a block per vertex x_i.
+const uint DIM_JITTER = 0u;  // 2 dimensions
+const uint DIM_LENS = 2u;    // 2 dimensions
+const uint DIM_BSDF = 0u;    // within a vertex block: 3 dimensions
+const uint DIM_RR = 3u;      // Russian roulette
+const uint DIM_NEE = 4u;     // 3 dimensions per light candidate
+uint dim_vertex(uint i) { return 8u + 128u * i; }
+
+struct Vertex {
+  vec3 position;      // render space of the frame it was loaded in
+  vec3 ng;            // geometric normal, on the side the path arrives from
+  vec3 ns;            // shading normal, same side
+  vec3 t;
+  vec3 b;
+  vec3 wo;            // local direction back along the arriving segment
+  BsdfParams bsdf;
+  bool rough;         // may take part in a reconnection (RECONNECT_MIN_ALPHA, or no specular lobe)
+  vec3 emission;      // radiance emitted back along the arriving segment (0 when it faces away)
+  vec3 material_emission;
+  bool double_sided;
+  float area;
+  float cos_in;       // |cos| between the geometric normal and the arriving segment
+  SurfacePoint point;
+};
+
+Vertex make_vertex(SurfaceHit s, RayHit h, uint lod, vec3 dir_in) {
+  Vertex v;
+  GpuMaterial m = b_materials[s.material];
+  float cos_hit = dot(s.geo_normal, -dir_in);
+  bool front = cos_hit > 0.0;
+  v.position = s.position;
+  v.ng = front ? s.geo_normal : -s.geo_normal;
+  v.ns = front ? s.shading_normal : -s.shading_normal;
+  make_onb(v.ns, v.t, v.b);
+  v.wo = to_local(-dir_in, v.t, v.b, v.ns);
+  v.bsdf = make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular);
+  v.rough = v.bsdf.alpha >= RECONNECT_MIN_ALPHA || max(v.bsdf.f0.r, max(v.bsdf.f0.g, v.bsdf.f0.b)) <= 0.0;
+  v.double_sided = (m.flags & MATERIAL_DOUBLE_SIDED) != 0u;
+  v.material_emission = m.emission_roughness.rgb;
+  v.emission = (front || v.double_sided) ? m.emission_roughness.rgb : vec3(0.0);
+  v.area = s.area;
+  v.cos_in = abs(cos_hit);
+  v.point.instance = h.instance;
+  v.point.geometry = h.geometry;
+  v.point.triangle = h.triangle;
+  v.point.bary = h.bary;
+  v.point.lod = lod;
+  return v;
+}
+
+// f(wo, d) |cos| at v; zero when d leaves below the geometric surface (reflection only).
+vec3 scatter(Vertex v, vec3 d) {
+  if (dot(d, v.ng) <= 0.0) return vec3(0.0);
+  return bsdf_eval_cos(v.bsdf, v.wo, to_local(d, v.t, v.b, v.ns));
+}
+
+float scatter_pdf(Vertex v, vec3 d) {
+  if (dot(d, v.ng) <= 0.0) return 0.0;
+  return bsdf_pdf(v.bsdf, v.wo, to_local(d, v.t, v.b, v.ns));
+}
+
+vec3 spawn(Vertex v) { return offset_ray_origin(v.position, v.ng); }
+
+// Light-sampling densities of either frame (light_sampling.glsl's, with that frame's totals).
+bool env_is_sampled() { return u_frame.environment.a > 0.0; }
+
+float light_pdf_emitter(bool prev, vec3 emission, float area, bool double_sided, float dist, float cos_light) {
+  float total = prev ? u_frame.prev_total_emitter_power : u_frame.total_emitter_power;
+  float env_select = prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob;
+  if (!(total > 0.0) || !(area > 0.0) || !(cos_light > 0.0)) return 0.0;
+  float pmf = (1.0 - env_select) * luminance(emission) * area * (double_sided ? 2.0 : 1.0) / total;
+  return gris_sanitize(pmf / area * dist * dist / cos_light);
+}
+
+float light_pdf_environment(bool prev) {
+  if (!env_is_sampled()) return 0.0;
+  return (prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob) * (1.0 / (4.0 * PI));
+}
+
+// The MIS weight of the technique that produced the path's last vertex, power heuristic with the
+// number of light candidates per vertex (Veach 1997 9.2.4); it is part of the target function, so
+// NEE and BSDF sampling of the same path are two disjoint parts of the sample space.
+float technique_weight(bool nee, float light_pdf, float bsdf_pdf_value) {
+  float pl = float(u_restir.light_candidates) * light_pdf;
+  return nee ? mis_power(pl, bsdf_pdf_value) : mis_power(bsdf_pdf_value, pl);
+}
+
+// Reconnectability (Lin et al. 2022 section 6.2; DESIGN.md section 6): an intermediate vertex x_i
+// may be the reconnection vertex when it and x_{i-1} are rough, the edge between them is not short
+// relative to the primary hit's distance, and x_i is not seen at a grazing angle (where the
+// reconnection Jacobian is singular); the path's last vertex needs only a rough x_{n-1} and, on a
+// surface, the same edge and angle (its emission does not depend on direction). Generation and
+// shifts apply the same rules, so every shift is a bijection between paths of the same structure
+// and fails symmetrically.
+bool rule_intermediate(Vertex before, Vertex v, float edge, float camera_distance) {
+  return before.rough && v.rough && edge >= RECONNECT_MIN_EDGE_RELATIVE * camera_distance && v.cos_in >= SHIFT_MIN_COS;
+}
+
+bool rule_end(Vertex before, bool escaped, float edge, float camera_distance, float cos_end) {
+  return before.rough && (escaped || (edge >= RECONNECT_MIN_EDGE_RELATIVE * camera_distance && cos_end >= SHIFT_MIN_COS));
+}
+
+// Camera ray through the subpixel position pixel + jitter of the frame's camera (box filter), with
+// the thin lens when the camera has an aperture; in render space (camera at the origin).
+void primary_ray(GpuCamera cam, vec2 pixel, vec2 jitter, vec2 lens, out vec3 origin, out vec3 dir) {
+  vec2 ndc = vec2((pixel.x + jitter.x) / float(u_frame.width) * 2.0 - 1.0, 1.0 - (pixel.y + jitter.y) / float(u_frame.height) * 2.0);
+  vec3 d = cam.forward.xyz + ndc.x * cam.right.xyz + ndc.y * cam.up.xyz;
+  origin = vec3(0.0);
+  if (cam.lens.x > 0.0) {
+    vec3 focus_point = d * cam.lens.y;
+    vec2 disk = sample_concentric_disk(lens) * cam.lens.x;
+    origin = disk.x * normalize(cam.right.xyz) + disk.y * normalize(cam.up.xyz);
+    dir = normalize(focus_point - origin);
+  } else {
+    dir = normalize(d);
+  }
+}
+
+GpuCamera camera_in(bool prev) {
+  if (prev) return u_frame.prev_camera;  // (if, not ?: — see instance_in in scene_bridge.glsl)
+  return u_frame.camera;
+}
+
+#endif

@@ -1,0 +1,49 @@
+// Constants of the ReSTIR passes (one uniform per method instance), shared by host and device.
+#ifndef STRATA_RESTIR_DATA_H
+#define STRATA_RESTIR_DATA_H
+#include "include/lang.h"
+
+STRATA_NAMESPACE_BEGIN
+
+CONST_DEF uint SHIFT_RECONNECTION = 0u;  // reconnect at x_2 only (the base path must allow it)
+CONST_DEF uint SHIFT_HYBRID = 1u;        // random replay until the first reconnectable vertex
+
+CONST_DEF uint MIS_BALANCE = 0u;   // generalized balance heuristic (RS-main Eq. 6), O(N^2) shifts
+CONST_DEF uint MIS_PAIRWISE = 1u;  // confidence-weighted pairwise MIS, O(N) shifts
+
+// flags
+CONST_DEF uint RESTIR_UNBIASED = 1u;  // temporal MIS with the reverse shift (Lin 2022); else the DI
+                                      // tutorial's confidence weights with heuristic validation
+
+struct GpuRestirConstants {
+  uint initial_candidates;  // N_init paths per pixel
+  uint light_candidates;    // NEE samples per vertex
+  uint shift_mode;          // SHIFT_*
+  uint mis_mode;            // MIS_*
+  float confidence_cap;
+  float spatial_radius;     // pixels
+  uint spatial_neighbors;
+  uint flags;               // RESTIR_*
+  uint max_segments;        // path length limit (1 bounce for ReSTIR DI: 2 segments)
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
+
+// Why a shift failed; counted per pass (COUNTER_SHIFT_* + reason).
+CONST_DEF uint SHIFT_OK = 0u;
+CONST_DEF uint SHIFT_FAIL_PRIMARY = 1u;    // the replayed primary ray missed, or hit something else
+CONST_DEF uint SHIFT_FAIL_REPLAY = 2u;     // a replayed direction was unusable or its ray missed
+CONST_DEF uint SHIFT_FAIL_STRUCTURE = 3u;  // the offset path's first reconnectable vertex is not k
+CONST_DEF uint SHIFT_FAIL_OCCLUDED = 4u;   // the reconnection segment is blocked
+CONST_DEF uint SHIFT_FAIL_JACOBIAN = 5u;   // grazing reconnection or Jacobian out of range
+CONST_DEF uint SHIFT_FAIL_STALE = 6u;      // the kept suffix changed with the scene (or LoD switched)
+CONST_DEF uint SHIFT_FAIL_ZERO = 7u;       // the offset path carries no light (BSDF or facing)
+CONST_DEF uint SHIFT_REASONS = 8u;
+
+STRATA_NAMESPACE_END
+
+#ifdef __cplusplus
+static_assert(sizeof(strata::gpu::GpuRestirConstants) == 48);
+#endif
+#endif

@@ -1,0 +1,58 @@
+// Declarations every ReSTIR pass shares: frame and method constants, counters, the reservoir
+// buffers, and packing helpers. A pass includes it after the scene bridge.
+#ifndef STRATA_RESTIR_PASS_GLSL
+#define STRATA_RESTIR_PASS_GLSL
+
+#include "include/bindings.h"
+#include "include/frame_data.h"
+#include "restir/gris.h"
+#include "restir/reservoir.h"
+#include "restir/restir_data.h"
+
+layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
+layout(set = 0, binding = BINDING_RESTIR, std140) uniform Restir { GpuRestirConstants u_restir; };
+layout(set = 0, binding = BINDING_COUNTERS, std430) buffer Counters { uint b_counters[]; };
+layout(set = 0, binding = BINDING_RESERVOIRS_OUT, std430) buffer ReservoirsOut { PackedReservoir b_out[]; };
+layout(set = 0, binding = BINDING_CONTRIBUTION, std430) buffer Contribution { vec4 b_contribution[]; };
+
+uint pixel_index(uvec2 p) { return p.y * u_frame.width + p.x; }
+
+Reservoir reservoir_empty() {
+  Reservoir r;
+  r.y.x1 = surface_none();
+  r.y.xk = surface_none();
+  r.y.xk_direction = vec3(0.0, 0.0, 1.0);
+  r.y.xk_radiance = vec3(0.0);
+  r.y.k = 0u;
+  r.y.segments = 0u;
+  r.y.flags = 0u;
+  r.y.seed = 0u;
+  r.y.lens = vec2(0.5);
+  r.y.time = 0.0;
+  r.y.jitter = vec2(0.5);
+  r.y.density = 0.0;
+  r.y.light_pdf_end = 0.0;
+  r.ucw = 0.0;
+  r.confidence = 0.0;
+  r.p_hat = 0.0;
+  return r;
+}
+
+bool reservoir_valid(Reservoir r) { return (r.y.flags & SAMPLE_VALID) != 0u && r.ucw > 0.0 && r.p_hat > 0.0; }
+
+// Writes the pass's output reservoir and f(Y) at this pixel; a non-finite weight empties it
+// (DESIGN.md section 6) and is counted.
+void store_output(uint index, Reservoir r, vec3 f) {
+  bool finite = !(isnan(r.ucw) || isinf(r.ucw) || isnan(r.p_hat) || isinf(r.p_hat) || any(isnan(f)) || any(isinf(f)));
+  if (!finite) {
+    atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], 1u);
+    float c = r.confidence;
+    r = reservoir_empty();
+    r.confidence = isnan(c) || isinf(c) ? 0.0 : c;
+    f = vec3(0.0);
+  }
+  b_out[index] = pack_reservoir(r);
+  b_contribution[index] = vec4(f, 0.0);
+}
+
+#endif

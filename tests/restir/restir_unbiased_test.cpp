@@ -1,0 +1,130 @@
+// Unbiasedness of restir-gather and restir-di (issue 4) with the harness of tests/support:
+// the per-pixel mean over R independent sequences (fresh seeds, F frames each; a sequence's value is
+// the mean of its frames 1..F-1, all of which reuse history) must match a converged `pt` reference
+// of the same frame states. The test per 4x4 block is a two-sided z-test at the Bonferroni threshold
+// for a family-wise false-failure probability of 1e-4 (sound: sequences are independent and
+// identically distributed, so their block means are normal to good accuracy for R >= 24; the
+// reference's own standard error enters the z-score), plus a z-test of the image mean.
+// It fails when the math is broken: see docs/BENCHMARKS.md "Checked by breaking the code".
+#include <cstdio>
+#include <functional>
+
+#include "gpu/gpu_context.h"
+#include "render/renderer.h"
+#include "scene/scene_io.h"
+#include "support/unbiasedness.h"
+
+namespace strata::test {
+namespace {
+
+constexpr uint32_t k_size = 16;
+
+struct Case {
+  std::string name;
+  std::string scene;
+  std::string method = "restir-gather";
+  uint32_t max_depth = 6;
+  uint32_t frames = 4;
+  uint32_t runs = 96;
+  std::function<void(render::RestirOptions&)> options = [](render::RestirOptions&) {};
+  // Frame state of frame f (default: the scene's animation).
+  std::function<scene::FrameState(const scene::Scene&, uint32_t)> state = [](const scene::Scene& s, uint32_t f) {
+    return s.frame_state(f);
+  };
+};
+
+// Mean over frames 1..F-1 of one sequence.
+image::Image sequence_mean(const scene::Scene& s, const Case& c, uint32_t seed) {
+  render::RenderSettings rs;
+  rs.width = k_size;
+  rs.height = k_size;
+  rs.method = c.method;
+  rs.max_depth = c.max_depth;
+  rs.seed = seed;
+  c.options(rs.restir);
+  render::Renderer renderer(gpu_context(), s, rs);
+  image::Image mean;
+  for (uint32_t f = 0; f < c.frames; ++f) {
+    auto r = renderer.render(c.state(s, f), f);
+    for (float v : r.image.rgba) EXPECT_TRUE(std::isfinite(v)) << c.name << " frame " << f;
+    if (f == 0) continue;
+    if (mean.rgba.empty()) mean = r.image;
+    else
+      for (size_t i = 0; i < mean.rgba.size(); ++i) mean.rgba[i] += r.image.rgba[i];
+  }
+  for (float& v : mean.rgba) v /= float(c.frames - 1);
+  return mean;
+}
+
+RunningImage reference_of(const scene::Scene& s, const Case& c, uint32_t runs, uint32_t spp) {
+  RunningImage out(k_size, k_size);
+  for (uint32_t r = 0; r < runs; ++r) {
+    render::RenderSettings rs;
+    rs.width = k_size;
+    rs.height = k_size;
+    rs.spp = spp;
+    rs.max_depth = c.max_depth;
+    rs.seed = 90000 + r;
+    image::Image mean;
+    for (uint32_t f = 1; f < c.frames; ++f) {
+      render::Renderer renderer(gpu_context(), s, rs);
+      auto img = renderer.render(c.state(s, f), f).image;
+      if (mean.rgba.empty()) mean = img;
+      else
+        for (size_t i = 0; i < mean.rgba.size(); ++i) mean.rgba[i] += img.rgba[i];
+    }
+    for (float& v : mean.rgba) v /= float(c.frames - 1);
+    out.add(mean);
+  }
+  return out;
+}
+
+class RestirUnbiased : public GpuTest, public ::testing::WithParamInterface<Case> {};
+
+TEST_P(RestirUnbiased, MatchesPathTracedReference) {
+  const Case& c = GetParam();
+  scene::Scene s = scene::builtin_scene(c.scene);
+  RunningImage reference = reference_of(s, c, 32, 512);
+  RunningImage method(k_size, k_size);
+  for (uint32_t r = 0; r < c.runs; ++r) method.add(sequence_mean(s, c, 1000 + r));
+  BiasReport report = compare_to_reference(method, reference, 4);
+  std::printf("%s: %s\n", c.name.c_str(), report.describe().c_str());
+  EXPECT_TRUE(report.passed) << c.name << ": " << report.describe();
+}
+
+// A camera that moves sideways and forward each frame (cornell's default camera).
+scene::FrameState moving_camera(const scene::Scene& s, uint32_t f) {
+  scene::FrameState st = s.frame_state(0);
+  st.camera.position += glm::vec3(0.04f * float(f), 0.02f * float(f), -0.05f * float(f));
+  return st;
+}
+
+std::vector<Case> cases() {
+  std::vector<Case> v;
+  v.push_back({.name = "initial_only", .scene = "cornell", .options = [](render::RestirOptions& o) {
+                 o.temporal = false;
+                 o.spatial = false;
+               }});
+  v.push_back({.name = "static_hybrid_pairwise", .scene = "cornell"});
+  v.push_back({.name = "moving_camera", .scene = "cornell", .state = moving_camera});
+  v.push_back({.name = "reconnection_shift", .scene = "cornell", .options = [](render::RestirOptions& o) { o.shift = "reconnection"; }});
+  v.push_back({.name = "balance_mis_3_neighbours", .scene = "cornell", .options = [](render::RestirOptions& o) {
+                 o.mis = "balance";
+                 o.spatial_neighbors = 3;
+                 o.spatial_radius = 6.0f;
+               }});
+  v.push_back({.name = "pairwise_mis_3_neighbours", .scene = "cornell", .options = [](render::RestirOptions& o) {
+                 o.spatial_neighbors = 3;
+                 o.spatial_radius = 6.0f;
+               }});
+  v.push_back({.name = "carousel_moving_glossy", .scene = "carousel"});
+  v.push_back({.name = "di_mode", .scene = "cornell", .method = "restir-di", .max_depth = 2,
+               .options = [](render::RestirOptions& o) { o.light_candidates = 4; }});
+  return v;
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, RestirUnbiased, ::testing::ValuesIn(cases()),
+                         [](const ::testing::TestParamInfo<Case>& p) { return p.param.name; });
+
+}  // namespace
+}  // namespace strata::test
