@@ -35,11 +35,8 @@ struct SurfaceHit {
   uint material;
 };
 
-bool trace_closest(vec3 origin, vec3 dir, float t_max, out RayHit hit) {
-  rayQueryEXT rq;
-  rayQueryInitializeEXT(rq, u_tlas, gl_RayFlagsOpaqueEXT, 0xFF, origin, 0.0, dir, t_max);
-  while (rayQueryProceedEXT(rq)) {
-  }
+// The committed triangle hit of a finished query (false, and an empty hit, when it found none).
+bool committed_hit(rayQueryEXT rq, out RayHit hit) {
   hit.t = 0.0;
   hit.instance = 0u;
   hit.geometry = 0u;
@@ -52,6 +49,14 @@ bool trace_closest(vec3 origin, vec3 dir, float t_max, out RayHit hit) {
   hit.triangle = uint(rayQueryGetIntersectionPrimitiveIndexEXT(rq, true));
   hit.bary = rayQueryGetIntersectionBarycentricsEXT(rq, true);
   return true;
+}
+
+bool trace_closest(vec3 origin, vec3 dir, float t_max, out RayHit hit) {
+  rayQueryEXT rq;
+  rayQueryInitializeEXT(rq, u_tlas, gl_RayFlagsOpaqueEXT, 0xFF, origin, 0.0, dir, t_max);
+  while (rayQueryProceedEXT(rq)) {
+  }
+  return committed_hit(rq, hit);
 }
 
 // True when nothing blocks the segment origin -> origin + dir * t_max.
@@ -114,18 +119,7 @@ bool trace_closest_in(bool prev, vec3 origin, vec3 dir, float t_max, out RayHit 
   rayQueryInitializeEXT(rq, u_tlas_prev, gl_RayFlagsOpaqueEXT, 0xFF, origin, 0.0, dir, t_max);
   while (rayQueryProceedEXT(rq)) {
   }
-  hit.t = 0.0;
-  hit.instance = 0u;
-  hit.geometry = 0u;
-  hit.triangle = 0u;
-  hit.bary = vec2(0.0);
-  if (rayQueryGetIntersectionTypeEXT(rq, true) != gl_RayQueryCommittedIntersectionTriangleEXT) return false;
-  hit.t = rayQueryGetIntersectionTEXT(rq, true);
-  hit.instance = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(rq, true));
-  hit.geometry = uint(rayQueryGetIntersectionGeometryIndexEXT(rq, true));
-  hit.triangle = uint(rayQueryGetIntersectionPrimitiveIndexEXT(rq, true));
-  hit.bary = rayQueryGetIntersectionBarycentricsEXT(rq, true);
-  return true;
+  return committed_hit(rq, hit);
 }
 
 bool trace_visible_in(bool prev, vec3 origin, vec3 dir, float t_max) {
