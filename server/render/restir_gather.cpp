@@ -174,6 +174,7 @@ void RestirGather::collect(std::span<const uint32_t> c, FrameStats& s) const {
   s.reuse["temporal.shifts"] = c[COUNTER_TEMPORAL_SHIFTS];
   s.reuse["temporal.no_history"] = c[COUNTER_TEMPORAL_NO_HISTORY];
   s.reuse["temporal.selected"] = c[COUNTER_TEMPORAL_SELECTED];
+  s.reuse["temporal.validation_refused"] = c[COUNTER_TEMPORAL_INVALID];
   s.reuse["spatial.shifts"] = c[COUNTER_SPATIAL_SHIFTS];
   s.reuse["spatial.selected"] = c[COUNTER_SPATIAL_SELECTED];
   for (uint32_t r = 1; r < SHIFT_REASONS; ++r) {

@@ -64,6 +64,7 @@ CONST_DEF uint COUNTER_SPATIAL_SHIFTS = 9u;
 CONST_DEF uint COUNTER_TEMPORAL_NO_HISTORY = 10u;   // pixels whose backprojection found no history
 CONST_DEF uint COUNTER_TEMPORAL_SELECTED = 11u;     // pixels whose output sample came from history
 CONST_DEF uint COUNTER_SPATIAL_SELECTED = 12u;      // pixels whose output sample came from a neighbour
+CONST_DEF uint COUNTER_TEMPORAL_INVALID = 13u;      // biased temporal: history refused by the heuristic validation
 CONST_DEF uint COUNTER_TEMPORAL_FAIL = 16u;         // + reason, SHIFT_REASONS slots
 CONST_DEF uint COUNTER_SPATIAL_FAIL = 24u;          // + reason
 CONST_DEF uint COUNTER_COUNT = 32u;

@@ -28,43 +28,62 @@ void count_shift(ShiftResult s) {
   if (s.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + s.reason], 1u);
 }
 
-// Backprojection (DESIGN.md section 2): the previous pixel that saw the current pixel-centre hit's
-// surface point, through the previous camera and the previous transform of its object.
-bool backproject(uvec2 pixel, out uvec2 q, out SurfaceHit centre) {
-  vec3 origin;
-  vec3 dir;
-  primary_ray(u_frame.camera, vec2(pixel), vec2(0.5), vec2(0.5), origin, dir);
-  RayHit h;
-  g_rays++;
-  if (!trace_closest(origin, dir, 1e30, h)) return false;
-  centre = load_hit(h);
-  GpuInstance before = instance_in(true, h.instance);
-  if (before.lod != b_instances[h.instance].lod) return false;
-  vec3 p = load_hit_with(before, h).position;  // previous render space: the previous camera at the origin
-  GpuCamera cam = u_frame.prev_camera;
-  float z = dot(p, cam.forward.xyz);
-  if (!(z > 0.0)) return false;
-  float x = dot(p, cam.right.xyz) / (z * dot(cam.right.xyz, cam.right.xyz));
-  float y = dot(p, cam.up.xyz) / (z * dot(cam.up.xyz, cam.up.xyz));
-  vec2 s = vec2((x + 1.0) * 0.5 * float(u_frame.prev_width), (1.0 - y) * 0.5 * float(u_frame.prev_height));
-  if (!(s.x >= 0.0 && s.y >= 0.0 && s.x < float(u_frame.prev_width) && s.y < float(u_frame.prev_height))) return false;
-  q = uvec2(s);
+// Backprojection (DESIGN.md section 2): the previous pixel q that saw the current pixel-centre hit's
+// surface point, through the previous camera and the previous transform of its object. With
+// `previous_centre` (the biased option's validation) it also traces q's own pixel-centre ray in
+// frame t-1: the previous G-buffer sample the DI tutorial validates against. Both rays go through
+// one call site (lavapipe inlines a traversal per call site).
+struct Backprojection {
+  uvec2 q;
+  SurfaceHit centre;       // this pixel's centre hit, frame t
+  vec3 centre_before;      // its surface point in frame t-1's render space
+  bool have_previous;      // q's centre ray hit something in frame t-1
+  SurfaceHit previous;     // q's centre hit, frame t-1 (render space of t-1)
+};
+
+bool backproject(uvec2 pixel, bool previous_centre, out Backprojection b) {
+  b.have_previous = false;
+  bool same_size = u_frame.prev_width == u_frame.width && u_frame.prev_height == u_frame.height;
+  for (uint job = 0u; job < (previous_centre && same_size ? 2u : 1u); ++job) {
+    bool prev = job == 1u;
+    vec3 origin;
+    vec3 dir;
+    primary_ray(camera_in(prev), prev ? vec2(b.q) : vec2(pixel), vec2(0.5), vec2(0.5), origin, dir);
+    RayHit h;
+    g_rays++;
+    bool hit = trace_closest_in(prev, origin, dir, 1e30, h);
+    if (prev) {
+      b.have_previous = hit;
+      if (hit) b.previous = load_hit_in(true, h);
+      continue;
+    }
+    if (!hit) return false;
+    b.centre = load_hit(h);
+    GpuInstance before = instance_in(true, h.instance);
+    if (before.lod != b_instances[h.instance].lod) return false;
+    vec3 p = load_hit_with(before, h).position;  // previous render space: the previous camera at the origin
+    b.centre_before = p;
+    GpuCamera cam = u_frame.prev_camera;
+    float z = dot(p, cam.forward.xyz);
+    if (!(z > 0.0)) return false;
+    float x = dot(p, cam.right.xyz) / (z * dot(cam.right.xyz, cam.right.xyz));
+    float y = dot(p, cam.up.xyz) / (z * dot(cam.up.xyz, cam.up.xyz));
+    vec2 s = vec2((x + 1.0) * 0.5 * float(u_frame.prev_width), (1.0 - y) * 0.5 * float(u_frame.prev_height));
+    if (!(s.x >= 0.0 && s.y >= 0.0 && s.x < float(u_frame.prev_width) && s.y < float(u_frame.prev_height))) return false;
+    b.q = uvec2(s);
+  }
   return true;
 }
 
-// The tutorial's validation of a history sample for the current pixel (DI tutorial section 5).
-bool heuristic_valid(SurfaceHit centre, Reservoir h, float p_hat_current) {
-  if (h.y.x1.instance == SURFACE_NONE || h.y.x1.instance >= uint(b_instances.length())) return false;
-  RayHit x1;
-  x1.t = 0.0;
-  x1.instance = h.y.x1.instance;
-  x1.geometry = h.y.x1.geometry;
-  x1.triangle = h.y.x1.triangle;
-  x1.bary = h.y.x1.bary;
-  SurfaceHit s = load_hit(x1);
-  float ratio = p_hat_current / h.p_hat;
-  return s.material == centre.material && dot(s.geo_normal, centre.geo_normal) > 0.9 &&
-         length(s.position - centre.position) < 0.05 * length(centre.position) && ratio >= 0.1 && ratio <= 10.0;
+// The tutorial's validation of the history for the current pixel (DI tutorial section 5): the
+// previous pixel's centre surface against the current one (material, normal, position relative to
+// the distance from the camera), and the target ratio p-hat(y_prev at x) / p-hat(y_prev at x_prev)
+// in [0.1, 10].
+bool heuristic_valid(Backprojection b, float p_hat_current, float p_hat_previous) {
+  if (!b.have_previous) return false;
+  float ratio = p_hat_current / p_hat_previous;
+  return b.previous.material == b.centre.material && dot(b.previous.geo_normal, b.centre.geo_normal) > 0.9 &&
+         length(b.previous.position - b.centre_before) < 0.05 * length(b.centre_before) && ratio >= 0.1 && ratio <= 10.0;
 }
 
 void main() {
@@ -74,10 +93,11 @@ void main() {
   Reservoir canonical = unpack_reservoir(b_out[index]);
   vec3 f_canonical = b_contribution[index].rgb;
 
-  uvec2 q;
-  SurfaceHit centre;
+  bool unbiased = (u_restir.flags & RESTIR_UNBIASED) != 0u;
+  Backprojection bp;
   Reservoir history = reservoir_empty();
-  bool have_history = backproject(pixel, q, centre);
+  bool have_history = backproject(pixel, !unbiased, bp);
+  uvec2 q = bp.q;
   // Whether domain q takes part depends on geometry only. An empty reservoir in q still claims its
   // MIS share of the canonical sample (its confidence counts), it just brings no candidate.
   if (have_history) history = unpack_reservoir(b_in[q.y * u_frame.prev_width + q.x]);
@@ -93,7 +113,6 @@ void main() {
   // Both shifts run through one call site (lavapipe compiles each inlined call separately):
   // job 0, the history sample into this pixel (frame t); job 1, the canonical sample back into q
   // (frame t-1), needed only for the unbiased MIS.
-  bool unbiased = (u_restir.flags & RESTIR_UNBIASED) != 0u;
   ShiftResult fw;
   fw.reason = SHIFT_FAIL_ZERO;
   fw.f = vec3(0.0);
@@ -127,13 +146,18 @@ void main() {
     float m_c = mis_balance2(c_c, canonical.p_hat, c_h, from_q);
     w_c = m_c * canonical.p_hat * canonical.ucw;
   } else {
-    // A history sample that fails validation is not merged, and its confidence is not counted.
-    bool valid = p_fw > 0.0 && heuristic_valid(centre, history, p_fw);
-    float total = valid ? c_c + c_h : c_c;
-    w_h = valid ? (c_h / total) * p_fw * history.ucw * jacobian : 0.0;
+    // The tutorial's merge: every domain counts with its confidence (its M) and no MIS. The history
+    // is merged only when q's surface passes the heuristic validation; a history without a sample
+    // (its candidates were all zero, e.g. in shadow) then counts its confidence with weight 0, as
+    // the tutorial's M_prev does.
+    bool has_sample = reservoir_valid(history);
+    bool valid = has_sample ? (p_fw > 0.0 && heuristic_valid(bp, p_fw, history.p_hat)) : heuristic_valid(bp, 1.0, 1.0);
+    if (!valid) atomicAdd(b_counters[COUNTER_TEMPORAL_INVALID], 1u);
+    if (!valid) c_h = 0.0;  // refused: neither its sample nor its confidence is merged
+    float total = c_c + c_h;
+    w_h = valid && has_sample ? (c_h / total) * p_fw * history.ucw * jacobian : 0.0;
     w_c = (c_c / total) * canonical.p_hat * canonical.ucw;
   }
-
   Rng rng = rng_init(index, 0x7E3A0u, u_frame.frame_index, u_frame.seed);
   GrisState s = gris_begin();
   gris_stream(s, w_c, canonical.p_hat, c_c, 0u, rng_next_float(rng));

@@ -2,7 +2,8 @@
 //
 // Per scene, at the animation's last frame F = frames - 1:
 //   reference  pt of frame_state(F) accumulated to --ref-spp (its own seed, independent of the rest);
-//   restir     restir-gather (1 spp) rendered over frames 0..F by a fresh renderer; error of frame F;
+//   restir     restir-gather (1 spp) rendered over frames 0..F by a fresh renderer; error of frame F
+//              (mean over --seeds sequences; --ablation adds initial-, temporal- and spatial-only);
 //              cost = median gpu_ms_total of frames 1..F (frame 0 builds the TLAS and has no history);
 //   pt         1 spp timings of frame F (several seeds) -> pt ms per spp; the equal-time spp is
 //              max(1, floor((restir_ms - pt_overhead_ms) / pt_path_trace_ms_per_spp)), where the
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <functional>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -47,6 +49,8 @@ struct Args {
   uint32_t foliage_ref_spp = 0;  // 0: same as --ref-spp
   uint32_t ref_spp_per_call = 64;
   uint32_t max_depth = 6;
+  uint32_t seeds = 1;     // restir error: mean over this many independent sequences
+  bool ablation = false;  // also initial-only, temporal-only and spatial-only variants
   std::string out = "restir_bench.json";
   std::string device;
 };
@@ -79,7 +83,8 @@ double pass_ms(const render::FrameStats& s, const std::string& pass) {
   return ms;
 }
 
-render::RenderSettings settings(const Args& a, const std::string& method, uint32_t spp, uint32_t seed) {
+render::RenderSettings settings(const Args& a, const std::string& method, uint32_t spp, uint32_t seed,
+                                const std::function<void(render::RestirOptions&)>& variant = {}) {
   render::RenderSettings rs;
   rs.width = a.width;
   rs.height = a.height;
@@ -87,6 +92,7 @@ render::RenderSettings settings(const Args& a, const std::string& method, uint32
   rs.spp = spp;
   rs.max_depth = a.max_depth;
   rs.seed = seed;
+  if (variant) variant(rs.restir);
   return rs;
 }
 
@@ -178,6 +184,34 @@ int run(const Args& a) {
     }
     const double restir_med = median(restir_ms);
 
+    // 3b. More sequences (fresh seeds) and the ablation variants: RelMSE of frame F, mean over seeds.
+    using Variant = std::function<void(render::RestirOptions&)>;
+    auto error_at_F = [&](const Variant& v, uint32_t seed) {
+      render::Renderer r(ctx, sc, settings(a, "restir-gather", 1, seed, v));
+      image::Image last;
+      for (uint32_t f = 0; f <= F; ++f) last = r.render(sc.frame_state(f), f).image;
+      return relmse(last, ref);
+    };
+    std::vector<std::pair<std::string, Variant>> variants = {{"default", {}}};
+    if (a.ablation) {
+      variants.push_back({"initial-only", [](render::RestirOptions& o) { o.temporal = o.spatial = false; }});
+      variants.push_back({"temporal-only", [](render::RestirOptions& o) { o.spatial = false; }});
+      variants.push_back({"spatial-only", [](render::RestirOptions& o) { o.temporal = false; }});
+    }
+    nlohmann::json variant_json = nlohmann::json::object();
+    double restir_err_mean = restir_err;
+    for (const auto& [vname, v] : variants) {
+      auto t0 = std::chrono::steady_clock::now();
+      std::vector<double> errs;
+      for (uint32_t k = 0; k < a.seeds; ++k) errs.push_back(k == 0 && vname == "default" ? restir_err : error_at_F(v, k_seed + 1000 * k));
+      double mean = 0.0;
+      for (double e : errs) mean += e / double(errs.size());
+      if (vname == "default") restir_err_mean = mean;
+      variant_json[vname] = {{"relmse_mean", mean}, {"relmse_by_seed", errs}};
+      std::fprintf(stderr, "[%s] restir %s: relmse %.4g over %u seeds (%.1f s)\n", name.c_str(), vname.c_str(), mean, a.seeds,
+                   seconds_since(t0));
+    }
+
     // 4. pt: 1 spp timings (one fresh renderer per seed), then the equal-time frame.
     std::vector<double> pt_total, pt_trace, pt_update;
     double pt1_err = 0.0;
@@ -190,7 +224,7 @@ int run(const Args& a) {
         pt_total.push_back(fr.stats.gpu_ms_total);
         pt_trace.push_back(pass_ms(fr.stats, "path_trace"));
         pt_update.push_back(pass_ms(fr.stats, "update"));
-        if (k == 0) pt1_err = relmse(fr.image, ref);
+        pt1_err += relmse(fr.image, ref) / k_timing_runs;  // mean over the timing seeds
       }
       std::fprintf(stderr, "[%s] pt timing %.1f s\n", name.c_str(), seconds_since(t0));
     }
@@ -202,11 +236,13 @@ int run(const Args& a) {
     double pt_eq_err = 0.0, pt_eq_ms = 0.0;
     {
       auto t0 = std::chrono::steady_clock::now();
-      render::Renderer r(ctx, sc, settings(a, "pt", eq_spp, k_seed));
-      r.render(fF, F);  // TLAS build frame, as above; the measured frame is the second
-      auto fr = r.render(fF, F);
-      pt_eq_err = relmse(fr.image, ref);
-      pt_eq_ms = fr.stats.gpu_ms_total;
+      for (uint32_t k = 0; k < a.seeds; ++k) {  // mean error over seeds; the time of the first
+        render::Renderer r(ctx, sc, settings(a, "pt", eq_spp, k_seed + 1000 * k));
+        r.render(fF, F);  // TLAS build frame, as above; the measured frame is the second
+        auto fr = r.render(fF, F);
+        pt_eq_err += relmse(fr.image, ref) / a.seeds;
+        if (k == 0) pt_eq_ms = fr.stats.gpu_ms_total;
+      }
       std::fprintf(stderr, "[%s] pt equal-time %u spp %.1f s\n", name.c_str(), eq_spp, seconds_since(t0));
     }
 
@@ -215,13 +251,15 @@ int run(const Args& a) {
     for (const auto& [g, b] : restir_mem) mem_total += b;
     nlohmann::json pass_med;
     for (const auto& [p, v] : restir_pass) pass_med[p] = median(v);
-    double ratio = pt_eq_err / restir_err;
+    double ratio = pt_eq_err / restir_err_mean;
     nlohmann::json sj = {
         {"scene", name},
         {"reference", {{"method", "pt"}, {"spp", ref_accum}, {"spp_per_call", per_call}, {"seed", k_ref_seed},
                        {"note", ref_spp != a.ref_spp ? "foliage reference spp lowered for lavapipe run time" : ""}}},
         {"restir_gather",
          {{"relmse", restir_err},
+          {"relmse_mean_over_seeds", restir_err_mean},
+          {"variants", variant_json},
           {"median_gpu_ms_frames_1_to_F", restir_ms.empty() ? 0.0 : restir_med},
           {"median_pass_ms", pass_med},
           {"frames", restir_frames},
@@ -235,7 +273,7 @@ int run(const Args& a) {
          {{"ms_per_spp_path_trace", pt_ms_per_spp},
           {"update_ms_per_frame", pt_overhead},
           {"gpu_ms_total_1spp", pt_total_1spp},
-          {"relmse_1spp", pt1_err},
+          {"relmse_1spp_mean_over_timing_seeds", pt1_err},
           {"equal_time_spp", eq_spp},
           {"equal_time_spp_rule", "max(1, floor((restir_median_ms - pt_update_ms) / pt_path_trace_ms_per_spp))"},
           {"equal_time_gpu_ms_measured", pt_eq_ms},
@@ -246,7 +284,7 @@ int run(const Args& a) {
     std::printf(
         "%s: restir relmse %.4g (%.2f ms: init %.2f temp %.2f spat %.2f shade %.2f upd %.2f) | pt %u spp relmse %.4g (%.2f ms, "
         "%.3f ms/spp; 1spp relmse %.4g) | pt/restir %.3f | %.0f B/px (reservoirs %.0f, contribution %.0f) | %.0f s\n",
-        name.c_str(), restir_err, restir_med, pass_med.value("initial", 0.0), pass_med.value("temporal", 0.0),
+        name.c_str(), restir_err_mean, restir_med, pass_med.value("initial", 0.0), pass_med.value("temporal", 0.0),
         pass_med.value("spatial", 0.0), pass_med.value("shade", 0.0), pass_med.value("update", 0.0), eq_spp, pt_eq_err, pt_eq_ms,
         pt_ms_per_spp, pt1_err, ratio, double(mem_total) / pixels, double(restir_mem["reservoirs"]) / pixels,
         double(restir_mem["contribution"]) / pixels, seconds_since(t_scene));
@@ -271,6 +309,8 @@ int main(int argc, char** argv) {
   app.add_option("--foliage-ref-spp", a.foliage_ref_spp, "reference spp for foliage (0: --ref-spp)")->capture_default_str();
   app.add_option("--ref-spp-per-call", a.ref_spp_per_call)->capture_default_str();
   app.add_option("--max-depth", a.max_depth)->capture_default_str();
+  app.add_option("--seeds", a.seeds, "restir error: mean over this many independent sequences")->capture_default_str();
+  app.add_flag("--ablation", a.ablation, "also initial-only, temporal-only and spatial-only restir variants");
   app.add_option("--out", a.out, "JSON output path")->capture_default_str();
   app.add_option("--device", a.device, "Vulkan device name substring");
   CLI11_PARSE(app, argc, argv);
