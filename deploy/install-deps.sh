@@ -34,8 +34,13 @@ PKGS=(
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libopenexr-dev libtinygltf-dev libmeshoptimizer-dev libglm-dev
   libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev libpng-dev
+  libssl-dev
   python3
+  chromium
 )
+# npm runs at build time (uPlot for the eval report, client/report/web); Debian's nodejs and npm
+# only when no npm is on PATH already (a newer Node may be installed some other way).
+if ! command -v npm >/dev/null 2>&1; then PKGS+=(nodejs npm); fi
 $SUDO apt-get install -y -qq --no-install-recommends "${PKGS[@]}"
 
 # Check that lavapipe is new enough for ray queries.
