@@ -81,6 +81,9 @@ Runner add_serve_command(CLI::App& app) {
   cmd->add_option("--idle-timeout", a->idle_timeout_s, "seconds after which a session without a stream expires")->capture_default_str();
   cmd->add_option("--drain-timeout", a->drain_timeout_s, "seconds that SIGTERM waits for frames in flight")->capture_default_str();
   cmd->add_option("--encode-threads", c.encode_threads, "threads encoding frames")->capture_default_str();
+  cmd->add_option("--max-reference-spp", l.max_reference_spp, "RenderReference: target samples per pixel")->capture_default_str();
+  cmd->add_option("--reference-cache", c.reference_cache,
+                  "directory of cached references (default: $XDG_CACHE_HOME/strata/references, else ~/.cache/strata/references)");
   cmd->add_option("--device", a->device, "Vulkan device name substring (default: $STRATA_DEVICE, else lavapipe)");
   cmd->add_flag("--validation", a->validation, "enable the Khronos validation layer");
   return [a] { return run_serve(*a); };

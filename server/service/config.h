@@ -16,6 +16,7 @@ struct ServiceLimits {
   uint32_t max_instances = 4096;
   uint32_t max_spp = 1024;
   uint32_t max_depth = 64;
+  uint32_t max_reference_spp = 65536;     // RenderReference: target samples per pixel
 };
 
 struct ServiceConfig {
@@ -26,6 +27,7 @@ struct ServiceConfig {
   std::chrono::milliseconds drain_timeout{std::chrono::seconds(10)};  // SIGTERM: frames in flight
   std::chrono::milliseconds end_grace{std::chrono::seconds(2)};  // a stream being ended whose write does not complete is cancelled after this
   uint32_t encode_threads = 2;
+  std::filesystem::path reference_cache;     // RenderReference's cache; empty: render::ReferenceCache::default_dir()
   // Throws std::invalid_argument naming the setting and its allowed range.
   void validate() const;
 };

@@ -106,6 +106,7 @@ grpc::Status RenderServiceImpl::GetServerStatus(grpc::ServerContext*, const v1::
     lim->set_max_frame_bytes(max_frame_bytes(l.max_pixels));
     set_duration(lim->mutable_idle_timeout(), cfg.idle_timeout);
     lim->set_scene_dir(cfg.scene_dir.string());
+    lim->set_max_reference_spp(l.max_reference_spp);
     for (const auto& m : render::available_methods()) resp->add_methods(m);
     uint64_t device_bytes = 0;
     const auto sessions = core_.registry.list();
@@ -125,6 +126,10 @@ grpc::Status RenderServiceImpl::GetServerStatus(grpc::ServerContext*, const v1::
 
 grpc::ServerBidiReactor<v1::FrameInput, v1::Frame>* RenderServiceImpl::Stream(grpc::CallbackServerContext* ctx) {
   return StreamReactor::start(core_, ctx);
+}
+
+grpc::Status RenderServiceImpl::RenderReference(grpc::ServerContext* ctx, const v1::ReferenceRequest* req, v1::Reference* resp) {
+  return references_.render(ctx, *req, resp);  // service/reference_service.cpp
 }
 
 }  // namespace strata::service

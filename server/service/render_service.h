@@ -3,6 +3,7 @@
 // callback API (StreamReactor).
 #include <grpcpp/grpcpp.h>
 
+#include "service/reference_service.h"
 #include "service/service_core.h"
 #include "strata/v1/render.grpc.pb.h"
 
@@ -19,9 +20,11 @@ class RenderServiceImpl final : public v1::RenderService::WithCallbackMethod_Str
   grpc::Status ListScenes(grpc::ServerContext*, const v1::ListScenesRequest*, v1::ListScenesResponse* resp) override;
   grpc::Status GetServerStatus(grpc::ServerContext*, const v1::GetServerStatusRequest*, v1::ServerStatus* resp) override;
   grpc::ServerBidiReactor<v1::FrameInput, v1::Frame>* Stream(grpc::CallbackServerContext* ctx) override;
+  grpc::Status RenderReference(grpc::ServerContext* ctx, const v1::ReferenceRequest* req, v1::Reference* resp) override;
 
  private:
   ServiceCore& core_;
+  ReferenceService references_{core_};
 };
 
 }  // namespace strata::service

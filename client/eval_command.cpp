@@ -1,0 +1,255 @@
+// `strata eval` (issue 6): error against run time. For each scene, gets the converged reference of
+// every frame of its default animation from stratad (RenderReference, cached by the server), plays
+// the animation with each method, scores every frame against its reference (RelMSE, MAPE,
+// HDR-FLIP; also over the disoccluded pixels when the reference has them), and writes
+// results.csv, results.json and a self-contained report.html. With --equal-time, pt then gets as
+// many samples per frame as fit in each other method's median frame time.
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "eval_runner.h"
+#include "eval_scoring.h"
+#include "progress.h"
+#include "report/report.h"
+
+namespace strata::client {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+struct EvalArgs : EvalSettings {
+  std::string scene_list = "cornell", method_list = "pt,restir-gather";
+  float exposure = 0.0f;  // PNG insets
+};
+
+std::vector<std::string> split(const std::string& list) {
+  std::vector<std::string> out;
+  std::stringstream ss(list);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+// The command line that reproduces this evaluation (every setting explicit).
+std::string command_line(const EvalArgs& a) {
+  std::ostringstream s;
+  s << "strata eval --server " << a.server << " --scenes " << a.scene_list << " --methods " << a.method_list << " --frames "
+    << a.frames << " --width " << a.width << " --height " << a.height << " --reference-spp " << a.reference_spp
+    << " --reference-error " << a.reference_error << " --seed " << a.seed;
+  if (a.max_depth) s << " --max-depth " << a.max_depth;
+  if (a.equal_time) s << " --equal-time";
+  s << " --out " << a.out;
+  return s.str();
+}
+
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+std::vector<uint8_t> png(const image::Image& img, float exposure) { return image::encode_png_preview(img, exposure); }
+
+class Evaluation {
+ public:
+  Evaluation(const EvalArgs& a, EvalClient& client, uint64_t total_steps)
+      : a_(a), client_(client), progress_(total_steps, Progress::stderr_is_terminal()) {}
+
+  void scene(const std::string& scene, report::Report& rep) {
+    // References first: every method is scored against the same images.
+    std::vector<ReferenceImage> refs;
+    for (uint32_t f = 0; f < a_.frames; ++f) {
+      const auto t = Clock::now();
+      refs.push_back(client_.reference(scene, f, a_));
+      const auto& info = refs.back().info;
+      references_.push_back({{"scene", scene}, {"frame", f}, {"spp", info.spp()}, {"relative_error", info.relative_error()},
+                             {"relative_error_reached", info.relative_error_reached()}, {"batches", info.batches()},
+                             {"cached", info.cached()}, {"cache_key", info.cache_key()}, {"gpu_ms", info.gpu_ms()},
+                             {"render_ms", info.render_ms()}, {"disoccluded_mask", !refs.back().mask.empty()}});
+      cache_hits_ += info.cached() ? 1 : 0;
+      step(f, ms_since(t), info.gpu_ms(), scene + " reference frame " + std::to_string(f) + " spp " + std::to_string(info.spp()) +
+                                              (info.cached() ? " (cached)" : ""));
+    }
+
+    report::Insets insets;
+    insets.scene = scene;
+    insets.frame = a_.frames - 1;
+    insets.images.emplace_back("reference", png(refs.back().image, a_.exposure));
+    std::map<std::string, report::Run> runs;  // the methods' own runs
+    std::map<uint32_t, report::Run> pt_by_spp;
+    for (const auto& method : a_.methods) {
+      image::Image last;
+      std::vector<float> flip_map;
+      runs[method] = run(scene, method, 1, refs, &last, &flip_map);
+      rep.runs.push_back(runs[method]);
+      insets.images.emplace_back(method, png(last, a_.exposure));
+      insets.images.emplace_back("error:" + method, report::error_map_png(flip_map, last.width, last.height, 1.0f));
+      if (method == "pt") pt_by_spp[1] = runs[method];
+    }
+    rep.insets.push_back(std::move(insets));
+    if (!a_.equal_time) return;
+
+    // pt's GPU time per sample from a 1-spp run over the same frames.
+    if (!pt_by_spp.count(1)) pt_by_spp[1] = run(scene, "pt", 1, refs);
+    const double pt_ms_per_spp = median_gpu_ms(pt_by_spp[1]);
+    pt_ms_per_spp_[scene] = pt_ms_per_spp;
+    for (const auto& method : a_.methods) {
+      if (method == "pt") continue;
+      const report::Run& m = runs[method];
+      const uint32_t spp = equal_time_spp(median_gpu_ms(m), pt_ms_per_spp, client_.status().limits().max_spp());
+      if (pt_by_spp.count(spp)) {
+        step_by(a_.frames);  // the same pt run serves again
+      } else {
+        pt_by_spp[spp] = run(scene, "pt", spp, refs);
+      }
+      report::Run pt = pt_by_spp[spp];
+      pt.equal_time_pt = true;
+      pt.matched_method = method;
+      rep.equal_time.push_back(equal_time_entry(m, pt));
+      rep.runs.push_back(std::move(pt));
+    }
+  }
+
+  void finish(report::Report& rep) {
+    progress_.finish();
+    rep.meta["references"] = references_;
+    rep.meta["reference_cache_hits"] = cache_hits_;
+    rep.meta["references_rendered"] = references_.size() - cache_hits_;
+    rep.meta["pt_ms_per_spp"] = pt_ms_per_spp_;
+  }
+
+ private:
+  // One method's run over the frames, scored; the last frame's image and HDR-FLIP map when asked.
+  report::Run run(const std::string& scene, const std::string& method, uint32_t spp, const std::vector<ReferenceImage>& refs,
+                  image::Image* last = nullptr, std::vector<float>* flip_map = nullptr) {
+    report::Run r;
+    r.scene = scene;
+    r.method = method;
+    r.spp = spp;
+    double cumulative = 0.0;
+    auto t = Clock::now();
+    client_.run_method(scene, method, spp, a_, [&](MethodImage&& m) {
+      const bool is_last = m.frame + 1 == a_.frames;
+      r.frames.push_back(score_frame(m, refs.at(m.frame), cumulative, is_last ? flip_map : nullptr));
+      cumulative = r.frames.back().cumulative_ms;
+      const auto& f = r.frames.back();
+      step(m.frame, ms_since(t), m.gpu_ms,
+           scene + " " + method + " spp " + std::to_string(spp) + " frame " + std::to_string(m.frame) + " relmse " +
+               std::to_string(f.whole.relmse) + " flip " + std::to_string(f.whole.flip));
+      if (is_last && last) *last = std::move(m.image);
+      t = Clock::now();
+    });
+    return r;
+  }
+
+  void step(uint32_t frame, double wall_ms, double gpu_ms, const std::string& detail) {
+    progress_.frame(++done_, frame, wall_ms, gpu_ms, 0, detail);
+  }
+  void step_by(uint64_t n) { done_ += n; }
+
+  const EvalArgs& a_;
+  EvalClient& client_;
+  Progress progress_;
+  uint64_t done_ = 0;
+  nlohmann::json references_ = nlohmann::json::array();
+  uint64_t cache_hits_ = 0;
+  nlohmann::json pt_ms_per_spp_ = nlohmann::json::object();
+};
+
+void print_summary(const report::Report& rep) {
+  for (const auto& run : rep.runs) {
+    if (run.equal_time_pt) continue;
+    const report::Errors e = mean_errors(run);
+    std::cout << run.scene << "  " << run.method << "  median " << median_gpu_ms(run) << " ms/frame  relmse " << e.relmse
+              << "  mape " << e.mape << "  flip " << e.flip << "\n";
+  }
+  for (const auto& et : rep.equal_time)
+    std::cout << et.scene << "  equal time: " << et.method << " (" << et.method_median_ms << " ms) vs pt at " << et.pt_spp
+              << " spp (" << et.pt_median_ms << " ms): error ratio relmse " << et.ratio.relmse << "  mape " << et.ratio.mape
+              << "  flip " << et.ratio.flip << "\n";
+}
+
+int run_eval(EvalArgs& a) {
+  a.scenes = split(a.scene_list);
+  a.methods = split(a.method_list);
+  const auto start = Clock::now();
+  EvalClient client(a.server, a.timeout_s);
+  client.check(a);  // unknown scenes and methods, limits: before any work
+  fs::create_directories(a.out);
+
+  report::Report rep;
+  rep.meta = {{"server", a.server},
+              {"device", client.status().device()},
+              {"date", utc_now()},
+              {"resolution", {{"width", a.width}, {"height", a.height}}},
+              {"frames", a.frames},
+              {"scenes", a.scenes},
+              {"methods", a.methods},
+              {"seed", a.seed},
+              {"max_depth", a.max_depth},
+              {"reference_spp", a.reference_spp},
+              {"reference_error", a.reference_error},
+              {"equal_time", a.equal_time},
+              {"command_line", command_line(a)}};
+  uint64_t non_pt = 0;
+  for (const auto& m : a.methods) non_pt += m != "pt";
+  const bool has_pt = non_pt < a.methods.size();
+  const uint64_t per_scene = a.frames * (1 + a.methods.size() + (a.equal_time ? non_pt + (has_pt ? 0 : 1) : 0));
+  Evaluation eval(a, client, per_scene * a.scenes.size());
+  std::cerr << "strata: eval of " << a.scenes.size() << " scene(s) x " << a.methods.size() << " method(s), " << a.frames
+            << " frame(s) at " << a.width << "x" << a.height << " on " << client.status().device() << " (" << a.server << ")\n";
+  for (const auto& scene : a.scenes) eval.scene(scene, rep);
+  eval.finish(rep);
+  rep.meta["wall_s"] = ms_since(start) / 1000.0;
+
+  const fs::path out(a.out);
+  report::write_csv(rep, out / "results.csv");
+  report::write_json(rep, out / "results.json");
+  report::write_html(rep, out / "report.html");
+  print_summary(rep);
+  std::cout << "wrote " << (out / "results.csv").string() << ", results.json and report.html ("
+            << rep.meta["reference_cache_hits"].get<uint64_t>() << " of " << rep.meta["references"].size()
+            << " references from the server's cache)\n";
+  return 0;
+}
+
+}  // namespace
+
+Runner add_eval_command(CLI::App& app) {
+  auto a = std::make_shared<EvalArgs>();
+  auto* cmd = app.add_subcommand("eval", "error against run time: methods vs converged references; results.csv/json, report.html");
+  cmd->add_option("--server", a->server, "stratad address host:port")->capture_default_str();
+  cmd->add_option("--scenes", a->scene_list, "scenes, comma-separated (the server's ListScenes)")->capture_default_str();
+  cmd->add_option("--methods", a->method_list, "methods, comma-separated (the server's status lists those available)")
+      ->capture_default_str();
+  cmd->add_option("--frames", a->frames, "frames of each scene's default animation")->capture_default_str();
+  cmd->add_option("--width", a->width, "image width")->capture_default_str();
+  cmd->add_option("--height", a->height, "image height")->capture_default_str();
+  cmd->add_option("--reference-spp", a->reference_spp, "samples per pixel of each reference")->capture_default_str();
+  cmd->add_option("--reference-error", a->reference_error,
+                  "stop a reference early at this estimated relative standard error (0: never)")
+      ->capture_default_str();
+  cmd->add_option("--seed", a->seed, "random seed of the methods (references derive theirs from it)")->capture_default_str();
+  cmd->add_option("--max-depth", a->max_depth, "path segments (default: the server's)");
+  cmd->add_flag("--equal-time", a->equal_time, "also run pt with as many spp as fit in each method's median frame time");
+  cmd->add_option("--exposure", a->exposure, "exposure of the PNG insets in stops")->capture_default_str();
+  cmd->add_option("--out", a->out, "output directory")->capture_default_str();
+  cmd->add_option("--timeout", a->timeout_s, "seconds for each call (a reference can take long)")->capture_default_str();
+  return [a] { return run_eval(*a); };
+}
+
+}  // namespace strata::client

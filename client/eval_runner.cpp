@@ -1,0 +1,189 @@
+#include "eval_runner.h"
+
+#include <algorithm>
+#include <span>
+#include <stdexcept>
+
+#include "connection.h"
+
+namespace strata::client {
+namespace {
+
+std::string joined(const std::vector<std::string>& items) {
+  std::string s;
+  for (const auto& i : items) s += (s.empty() ? "" : ", ") + i;
+  return s;
+}
+
+image::Image decode(const v1::Image& img) {
+  const auto& d = img.data();
+  const std::span<const uint8_t> bytes(reinterpret_cast<const uint8_t*>(d.data()), d.size());
+  if (img.encoding() == v1::IMAGE_ENCODING_EXR_HALF) return image::decode_exr(bytes);
+  if (img.encoding() == v1::IMAGE_ENCODING_RAW_RGBA16F) return image::decode_rgba16f(bytes, img.width(), img.height());
+  throw std::runtime_error("the server sent an image in encoding " + std::to_string(int(img.encoding())) +
+                           ", not EXR_HALF or RAW_RGBA16F");
+}
+
+}  // namespace
+
+EvalClient::EvalClient(const std::string& address, double timeout_s) : address_(address), timeout_s_(timeout_s) {
+  auto stub = v1::RenderService::NewStub(connect(address));
+  {
+    grpc::ClientContext ctx;
+    set_deadline(ctx, std::chrono::seconds(30));
+    auto st = stub->GetServerStatus(&ctx, {}, &status_);
+    if (!st.ok()) throw RpcError("GetServerStatus (" + address + ")", st);
+  }
+  // Frames and references are at most limits.max_frame_bytes.
+  stub_ = v1::RenderService::NewStub(connect(address, std::max<uint64_t>(status_.limits().max_frame_bytes(), 4u << 20)));
+  grpc::ClientContext ctx;
+  set_deadline(ctx, std::chrono::seconds(30));
+  v1::ListScenesResponse scenes;
+  auto st = stub_->ListScenes(&ctx, {}, &scenes);
+  if (!st.ok()) throw RpcError("ListScenes", st);
+  for (const auto& e : scenes.scenes()) scenes_[e.name()] = e.kind();
+}
+
+std::chrono::milliseconds EvalClient::timeout() const { return std::chrono::milliseconds(int64_t(timeout_s_ * 1000.0)); }
+
+void EvalClient::check(const EvalSettings& s) {
+  if (s.scenes.empty()) throw std::runtime_error("--scenes is empty");
+  if (s.methods.empty()) throw std::runtime_error("--methods is empty");
+  if (s.frames < 1) throw std::runtime_error("--frames must be at least 1");
+  std::vector<std::string> names;
+  for (const auto& [name, kind] : scenes_) names.push_back(name);
+  for (const auto& scene : s.scenes)
+    if (!scenes_.count(scene))
+      throw std::runtime_error("--scenes: '" + scene + "' is not a scene of " + address_ + "; its scenes: " + joined(names));
+  const std::vector<std::string> methods(status_.methods().begin(), status_.methods().end());
+  for (const auto& m : s.methods)
+    if (std::find(methods.begin(), methods.end(), m) == methods.end())
+      throw std::runtime_error("--methods: '" + m + "' is not available on " + address_ + "; available: " + joined(methods));
+  for (size_t i = 0; i < s.methods.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (s.methods[i] == s.methods[j]) throw std::runtime_error("--methods: '" + s.methods[i] + "' is given twice");
+  const auto& l = status_.limits();
+  if (s.width < 1 || s.height < 1 || s.width > l.max_dimension() || s.height > l.max_dimension() ||
+      uint64_t(s.width) * s.height > l.max_pixels())
+    throw std::runtime_error("--width x --height = " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                             " is over the server's limits (max_dimension " + std::to_string(l.max_dimension()) +
+                             ", max_pixels " + std::to_string(l.max_pixels()) + ")");
+  if (s.reference_spp < 1 || s.reference_spp > l.max_reference_spp())
+    throw std::runtime_error("--reference-spp = " + std::to_string(s.reference_spp) + " is outside [1, " +
+                             std::to_string(l.max_reference_spp()) + "] (the server's max_reference_spp)");
+  if (!(s.reference_error >= 0.0f && s.reference_error < 1.0f))
+    throw std::runtime_error("--reference-error must be in [0, 1) (0: no early stop)");
+  if (s.max_depth > l.max_depth())
+    throw std::runtime_error("--max-depth = " + std::to_string(s.max_depth) + " is over the server's max_depth " +
+                             std::to_string(l.max_depth()));
+}
+
+v1::SceneSource EvalClient::scene_source(const std::string& scene) const {
+  v1::SceneSource src;
+  auto it = scenes_.find(scene);
+  if (it != scenes_.end() && it->second == v1::SceneEntry::FILE) src.set_path(scene);
+  else src.set_builtin(scene);
+  return src;
+}
+
+ReferenceImage EvalClient::reference(const std::string& scene, uint32_t frame, const EvalSettings& s) {
+  v1::ReferenceRequest req;
+  *req.mutable_scene() = scene_source(scene);
+  req.mutable_resolution()->set_width(s.width);
+  req.mutable_resolution()->set_height(s.height);
+  req.mutable_frame()->set_animation_frame(frame);
+  if (frame > 0) req.mutable_previous_frame()->set_animation_frame(frame - 1);
+  req.set_max_depth(s.max_depth);
+  req.set_seed(s.seed);
+  req.set_spp(s.reference_spp);
+  req.set_relative_error(s.reference_error);
+  req.set_encoding(v1::IMAGE_ENCODING_RAW_RGBA16F);
+  grpc::ClientContext ctx;
+  set_deadline(ctx, timeout());
+  ReferenceImage out;
+  auto st = stub_->RenderReference(&ctx, req, &out.info);
+  if (!st.ok()) throw RpcError("RenderReference (" + scene + " frame " + std::to_string(frame) + ")", st);
+  out.image = decode(out.info.image());
+  const auto& mask = out.info.disoccluded_mask();
+  if (!mask.empty()) {
+    if (mask.size() != size_t(s.width) * s.height)
+      throw std::runtime_error("RenderReference: disoccluded_mask has " + std::to_string(mask.size()) + " bytes for " +
+                               std::to_string(s.width) + "x" + std::to_string(s.height) + " pixels");
+    out.mask.assign(mask.begin(), mask.end());
+  }
+  out.info.clear_image();
+  out.info.clear_disoccluded_mask();
+  return out;
+}
+
+void EvalClient::run_method(const std::string& scene, const std::string& method, uint32_t spp, const EvalSettings& s,
+                            const std::function<void(MethodImage&&)>& on_frame) {
+  v1::CreateSessionRequest req;
+  *req.mutable_scene() = scene_source(scene);
+  req.mutable_resolution()->set_width(s.width);
+  req.mutable_resolution()->set_height(s.height);
+  req.set_method(method);
+  req.set_seed(s.seed);
+  req.mutable_options()->set_spp(spp);
+  if (s.max_depth) req.mutable_options()->set_max_depth(s.max_depth);
+  req.add_encodings(v1::IMAGE_ENCODING_RAW_RGBA16F);
+  v1::Session session;
+  {
+    grpc::ClientContext ctx;
+    set_deadline(ctx, timeout());
+    auto st = stub_->CreateSession(&ctx, req, &session);
+    if (!st.ok()) throw RpcError("CreateSession (" + scene + ", " + method + ", spp " + std::to_string(spp) + ")", st);
+  }
+  auto remove = [&] {
+    grpc::ClientContext ctx;
+    set_deadline(ctx, std::chrono::seconds(30));
+    v1::DeleteSessionRequest del;
+    del.set_name(session.name());
+    google::protobuf::Empty empty;
+    return stub_->DeleteSession(&ctx, del, &empty);
+  };
+  try {
+    grpc::ClientContext ctx;
+    set_deadline(ctx, timeout());
+    auto stream = stub_->Stream(&ctx);
+    uint32_t received = 0;
+    try {
+    for (uint32_t f = 0; f < s.frames; ++f) {  // lockstep: every input gets its own frame
+      v1::FrameInput in;
+      if (f == 0) in.set_session(session.name());
+      in.set_sequence(f + 1);
+      in.set_animation_frame(f);
+      if (!stream->Write(in)) break;
+      v1::Frame frame;
+      if (!stream->Read(&frame)) break;
+      if (frame.input_sequence() != f + 1 || frame.images_size() == 0)
+        throw std::runtime_error("Stream: frame " + std::to_string(frame.frame_index()) + " answers input " +
+                                 std::to_string(frame.input_sequence()) + ", expected " + std::to_string(f + 1));
+      MethodImage m;
+      m.frame = f;
+      m.image = decode(frame.images(0));
+      m.gpu_ms = frame.gpu_ms_total();
+      for (const auto& p : frame.pass_ms()) m.pass_ms[p.pass()] += p.ms();
+      on_frame(std::move(m));
+      ++received;
+    }
+    } catch (...) {
+      ctx.TryCancel();  // ends the call before the stream goes
+      (void)stream->Finish();
+      throw;
+    }
+    stream->WritesDone();
+    const grpc::Status st = stream->Finish();
+    if (!st.ok()) throw RpcError("Stream (" + scene + ", " + method + ")", st);
+    if (received != s.frames)
+      throw std::runtime_error("Stream (" + scene + ", " + method + "): the server ended the stream after " +
+                               std::to_string(received) + " of " + std::to_string(s.frames) + " frames");
+  } catch (...) {
+    remove();
+    throw;
+  }
+  const auto st = remove();
+  if (!st.ok()) throw RpcError("DeleteSession", st);
+}
+
+}  // namespace strata::client

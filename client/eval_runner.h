@@ -1,0 +1,80 @@
+#pragma once
+// The RPCs of `strata eval`: the server's status, scenes and methods (checked before any work),
+// references of exact frame states (RenderReference), and lockstep streams of a method over the
+// frames of a scene's default animation, with every frame's HDR image and per-pass GPU times.
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "image/image.h"
+#include "strata/v1/render.grpc.pb.h"
+
+namespace strata::client {
+
+namespace v1 = ::strata::v1;
+
+struct EvalSettings {
+  std::string server = "127.0.0.1:50051";
+  std::vector<std::string> scenes{"cornell"}, methods{"pt", "restir-gather"};
+  uint32_t frames = 8, width = 256, height = 256, seed = 0;
+  uint32_t max_depth = 0;          // 0: the server's default
+  uint32_t reference_spp = 1024;
+  float reference_error = 0.0f;    // 0: no early stop
+  bool equal_time = false;
+  std::string out = "out/eval";
+  double timeout_s = 3600.0;       // per RPC (a reference may take long on lavapipe)
+};
+
+// A scene's reference of one frame.
+struct ReferenceImage {
+  image::Image image;
+  std::vector<uint8_t> mask;       // disoccluded pixels (width*height), empty when unknown
+  v1::Reference info;              // what the server said, image and mask bytes removed
+};
+
+// One frame a method rendered.
+struct MethodImage {
+  uint32_t frame = 0;
+  image::Image image;
+  double gpu_ms = 0.0;
+  std::map<std::string, double> pass_ms;
+};
+
+class EvalClient {
+ public:
+  // Connects and reads the server's status (its limits size the channel for frames).
+  EvalClient(const std::string& address, double timeout_s);
+
+  const v1::ServerStatus& status() const { return status_; }
+  const std::string& address() const { return address_; }
+
+  // Throws std::runtime_error naming every unknown scene or unavailable method, with the lists
+  // the server offers, and settings over the server's limits.
+  void check(const EvalSettings& s);
+
+  // The reference of `frame` of the scene's default animation (with the previous frame's state
+  // for frames > 0, for the disoccluded mask).
+  ReferenceImage reference(const std::string& scene, uint32_t frame, const EvalSettings& s);
+
+  // Creates a session of `method` with `spp`, streams frames 0..frames-1 of the default
+  // animation in lockstep (RAW_RGBA16F) and hands each frame to `on_frame`, then deletes the session.
+  void run_method(const std::string& scene, const std::string& method, uint32_t spp, const EvalSettings& s,
+                  const std::function<void(MethodImage&&)>& on_frame);
+
+ private:
+  v1::SceneSource scene_source(const std::string& scene) const;
+  std::chrono::milliseconds timeout() const;
+
+  std::string address_;
+  double timeout_s_;
+  std::unique_ptr<v1::RenderService::Stub> stub_;
+  v1::ServerStatus status_;
+  std::map<std::string, v1::SceneEntry::Kind> scenes_;  // from ListScenes
+};
+
+}  // namespace strata::client

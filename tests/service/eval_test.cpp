@@ -1,0 +1,163 @@
+// `strata eval` end to end: a real `stratad serve` process and the real client on a tiny image.
+// The three files are written, every number in them is finite, the CSV has one row per run and
+// frame, equal-time pt runs are there, a second run takes every reference from the server's cache,
+// and unknown scenes or methods are refused before any work.
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "process.h"
+
+namespace strata::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::vector<std::string> eval_args(const std::string& address, const fs::path& out) {
+  return {strata_path(), "eval", "--server", address, "--scenes", "cornell", "--methods", "pt,restir-gather", "--frames", "3",
+          "--width", "16", "--height", "16", "--reference-spp", "32", "--seed", "1", "--equal-time", "--out", out.string()};
+}
+
+// Every number in `j` is finite (NaN and infinities would have been written as null).
+void expect_finite_numbers(const nlohmann::json& j, const std::string& at = "") {
+  if (j.is_number_float()) {
+    EXPECT_TRUE(std::isfinite(j.get<double>())) << at;
+  }
+  if (j.is_object())
+    for (const auto& [k, v] : j.items()) expect_finite_numbers(v, at + "." + k);
+  if (j.is_array())
+    for (size_t i = 0; i < j.size(); ++i) expect_finite_numbers(j[i], at + "[" + std::to_string(i) + "]");
+}
+
+std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::stringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.emplace_back();
+    rows.push_back(std::move(cells));
+  }
+  return rows;
+}
+
+void check_results(const fs::path& out) {
+  for (const char* name : {"results.csv", "results.json", "report.html"})
+    EXPECT_GT(fs::file_size(out / name), 0u) << name;
+  EXPECT_NE(read_file(out / "report.html").find("<html"), std::string::npos);
+
+  // results.csv: pt, restir-gather and the equal-time pt run, 3 frames each.
+  const auto rows = csv_rows(read_file(out / "results.csv"));
+  ASSERT_EQ(rows.size(), 1u + 3u * 3u) << read_file(out / "results.csv");
+  const auto& header = rows[0];
+  std::map<std::string, size_t> col;
+  for (size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
+  for (const char* c : {"scene", "method", "spp", "equal_time_pt", "frame", "gpu_ms", "relmse", "mape", "flip"})
+    ASSERT_TRUE(col.count(c)) << "no column " << c;
+  std::map<std::string, std::set<std::string>> frames_by_run;
+  for (size_t r = 1; r < rows.size(); ++r) {
+    const auto& row = rows[r];
+    ASSERT_EQ(row.size(), header.size()) << "row " << r;
+    EXPECT_EQ(row[col["scene"]], "cornell");
+    frames_by_run[row[col["method"]] + (row[col["equal_time_pt"]] == "true" ? " (equal time)" : "")].insert(row[col["frame"]]);
+    for (const char* c : {"gpu_ms", "cumulative_ms", "relmse", "mape", "flip"}) {
+      char* end = nullptr;
+      const double v = std::strtod(row[col[c]].c_str(), &end);
+      EXPECT_TRUE(end && *end == '\0' && !row[col[c]].empty()) << c << " = '" << row[col[c]] << "' in row " << r;
+      EXPECT_TRUE(std::isfinite(v) && v >= 0.0) << c << " = " << v << " in row " << r;
+    }
+  }
+  const std::set<std::string> all_frames = {"0", "1", "2"};
+  EXPECT_EQ(frames_by_run.size(), 3u);
+  EXPECT_EQ(frames_by_run["pt"], all_frames);
+  EXPECT_EQ(frames_by_run["restir-gather"], all_frames);
+  EXPECT_EQ(frames_by_run["pt (equal time)"], all_frames);
+
+  const auto doc = nlohmann::json::parse(read_file(out / "results.json"));
+  expect_finite_numbers(doc);
+  ASSERT_EQ(doc["runs"].size(), 3u);
+  for (const auto& run : doc["runs"])
+    for (const auto& f : run["frames"]) {
+      EXPECT_GT(f["whole"]["relmse"].get<double>(), 0.0);
+      EXPECT_FALSE(f["pass_ms"].empty());
+    }
+  ASSERT_EQ(doc["equal_time"].size(), 1u);
+  const auto& et = doc["equal_time"][0];
+  EXPECT_EQ(et["method"], "restir-gather");
+  EXPECT_GE(et["pt_spp"].get<int>(), 1);
+  for (const char* m : {"relmse", "mape", "flip"}) EXPECT_GT(et["ratio"][m].get<double>(), 0.0) << m;
+  ASSERT_EQ(doc["insets"].size(), 1u);
+  std::set<std::string> insets;
+  for (const auto& name : doc["insets"][0]["images"]) insets.insert(name.get<std::string>());
+  EXPECT_EQ(insets, (std::set<std::string>{"reference", "pt", "restir-gather", "error:pt", "error:restir-gather"}));
+  EXPECT_EQ(doc["meta"]["references"].size(), 3u);
+  for (const auto& r : doc["meta"]["references"]) EXPECT_EQ(r["spp"], 32);
+}
+
+TEST(EvalTest, StrataEvalWritesTheReportAndReusesCachedReferences) {
+  TempDir dir;
+  Daemon daemon({"--reference-cache", (dir.path / "cache").string()});
+  const auto first = run_process(eval_args(daemon.address(), dir.path / "first"), 300s);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  check_results(dir.path / "first");
+  const auto meta1 = nlohmann::json::parse(read_file(dir.path / "first" / "results.json"))["meta"];
+  // cornell's camera is keyed still, but its sampled frame states may differ in the last bit:
+  // frames whose states are equal share one reference (the cache is keyed by content).
+  std::set<std::string> keys;
+  for (const auto& r : meta1["references"]) keys.insert(r["cache_key"].get<std::string>());
+  EXPECT_EQ(meta1["references_rendered"].get<size_t>(), keys.size());
+  EXPECT_EQ(meta1["reference_cache_hits"].get<size_t>(), 3 - keys.size());
+  EXPECT_NE(meta1["command_line"].get<std::string>().find("--equal-time"), std::string::npos);
+
+  const auto second = run_process(eval_args(daemon.address(), dir.path / "second"), 300s);
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  check_results(dir.path / "second");
+  const auto doc2 = nlohmann::json::parse(read_file(dir.path / "second" / "results.json"));
+  EXPECT_EQ(doc2["meta"]["reference_cache_hits"], 3);
+  EXPECT_EQ(doc2["meta"]["references_rendered"], 0);
+  for (const auto& r : doc2["meta"]["references"]) EXPECT_TRUE(r["cached"].get<bool>());
+  // Same seeds and references: the methods' errors are the same.
+  const auto doc1 = nlohmann::json::parse(read_file(dir.path / "first" / "results.json"));
+  EXPECT_EQ(doc1["runs"][0]["frames"][2]["whole"], doc2["runs"][0]["frames"][2]["whole"]);
+  EXPECT_EQ(size_t(std::distance(fs::directory_iterator(dir.path / "cache"), fs::directory_iterator{})), keys.size());
+}
+
+TEST(EvalTest, UnknownScenesAndMethodsAreRefusedBeforeAnyWork) {
+  TempDir dir;
+  Daemon daemon({"--reference-cache", (dir.path / "cache").string()});
+  auto args = eval_args(daemon.address(), dir.path / "out");
+  args[5] = "cornell,no-such-scene";
+  const auto scene = run_process(args, 60s);
+  EXPECT_NE(scene.exit_code, 0);
+  EXPECT_NE(scene.output.find("--scenes: 'no-such-scene' is not a scene of"), std::string::npos) << scene.output;
+  EXPECT_NE(scene.output.find("cornell"), std::string::npos) << scene.output;
+
+  args = eval_args(daemon.address(), dir.path / "out");
+  args[7] = "pt,magic";
+  const auto method = run_process(args, 60s);
+  EXPECT_NE(method.exit_code, 0);
+  EXPECT_NE(method.output.find("--methods: 'magic' is not available on"), std::string::npos) << method.output;
+  EXPECT_NE(method.output.find("restir-gather"), std::string::npos) << method.output;
+
+  args = eval_args(daemon.address(), dir.path / "out");
+  args[9] = "0";
+  const auto frames = run_process(args, 60s);
+  EXPECT_NE(frames.exit_code, 0);
+  EXPECT_NE(frames.output.find("--frames must be at least 1"), std::string::npos) << frames.output;
+  EXPECT_FALSE(fs::exists(dir.path / "out")) << "nothing was started";
+  EXPECT_FALSE(fs::exists(dir.path / "cache"));
+}
+
+}  // namespace
+}  // namespace strata::test
