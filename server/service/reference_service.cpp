@@ -4,8 +4,10 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <optional>
 
 #include "image/image.h"
+#include "render/disocclusion.h"
 #include "render/reference.h"
 #include "service/errors.h"
 #include "service/frame_input.h"
@@ -21,19 +23,33 @@ constexpr uint32_t k_default_max_depth = 16;
 constexpr auto k_poll = std::chrono::milliseconds(50);
 
 // One reference's accumulation on the frame scheduler: a batch per turn, then it queues itself
-// again behind the sessions waiting for frames, until done or cancelled.
+// again behind the sessions waiting for frames, until done or cancelled. With a previous frame
+// state it then computes the disocclusion mask (one more turn); a cached reference runs only that.
 class ReferenceJob final : public ScheduledStream, public std::enable_shared_from_this<ReferenceJob> {
  public:
-  // `render` draws `scene`, which the job keeps alive for as long as it lives.
-  ReferenceJob(FrameScheduler& scheduler, std::shared_ptr<const scene::Scene> scene, std::unique_ptr<render::ReferenceRender> render)
-      : scheduler_(scheduler), scene_(std::move(scene)), render_(std::move(render)) {}
+  struct MaskRequest {
+    scene::FrameState previous, frame;
+    uint32_t width = 0, height = 0;
+  };
+  // `render` (null when the image came from the cache) draws `scene`, which the job keeps alive.
+  ReferenceJob(const gpu::Context& ctx, FrameScheduler& scheduler, std::shared_ptr<const scene::Scene> scene,
+               std::unique_ptr<render::ReferenceRender> render, std::optional<MaskRequest> mask)
+      : ctx_(ctx), scheduler_(scheduler), scene_(std::move(scene)), render_(std::move(render)), mask_request_(std::move(mask)) {}
 
   void render_pending() override {
     if (cancelled_.load()) return finish(grpc::Status(grpc::StatusCode::CANCELLED, "cancelled"));
-    grpc::Status st = guarded([&] { render_->render_batch(); });
-    if (!st.ok()) return finish(std::move(st));
-    if (render_->done()) return finish(grpc::Status::OK);
-    scheduler_.enqueue(shared_from_this());
+    if (render_ && !render_->done()) {
+      grpc::Status st = guarded([&] { render_->render_batch(); });
+      if (!st.ok()) return finish(std::move(st));
+      if (!render_->done() || mask_request_) return scheduler_.enqueue(shared_from_this());
+      return finish(grpc::Status::OK);
+    }
+    if (mask_request_) {
+      const MaskRequest& m = *mask_request_;
+      grpc::Status st = guarded([&] { mask_ = render::DisocclusionMask(ctx_, *scene_).compute(m.previous, m.frame, m.width, m.height); });
+      return finish(std::move(st));
+    }
+    finish(grpc::Status::OK);
   }
 
   // True once finished (status() is then valid).
@@ -48,6 +64,7 @@ class ReferenceJob final : public ScheduledStream, public std::enable_shared_fro
   // The accumulation stops before its next batch.
   void cancel() { cancelled_ = true; }
   render::ReferenceEntry result() const { return render_->result(); }
+  const std::vector<uint8_t>& mask() const { return mask_; }
 
  private:
   void finish(grpc::Status st) {
@@ -59,9 +76,12 @@ class ReferenceJob final : public ScheduledStream, public std::enable_shared_fro
     cv_.notify_all();
   }
 
+  const gpu::Context& ctx_;
   FrameScheduler& scheduler_;
   std::shared_ptr<const scene::Scene> scene_;
   std::unique_ptr<render::ReferenceRender> render_;
+  std::optional<MaskRequest> mask_request_;
+  std::vector<uint8_t> mask_;
   std::atomic<bool> cancelled_{false};
   mutable std::mutex mu_;
   std::condition_variable cv_;
@@ -187,7 +207,10 @@ grpc::Status ReferenceService::render(grpc::ServerContext* ctx, const v1::Refere
     render::ReferenceKey key;
     key.scene_hash = loaded.hash;
     key.frame = resolve_frame_state(req.frame(), sc, limits, "frame", &key.shutter);
-    if (req.has_previous_frame()) (void)resolve_frame_state(req.previous_frame(), sc, limits, "previous_frame");
+    std::optional<ReferenceJob::MaskRequest> mask;
+    if (req.has_previous_frame())
+      mask = ReferenceJob::MaskRequest{resolve_frame_state(req.previous_frame(), sc, limits, "previous_frame"), key.frame,
+                                       req.resolution().width(), req.resolution().height()};
     key.width = req.resolution().width();
     key.height = req.resolution().height();
     key.max_depth = req.max_depth() ? std::min(req.max_depth(), limits.max_depth) : std::min(k_default_max_depth, limits.max_depth);
@@ -198,10 +221,33 @@ grpc::Status ReferenceService::render(grpc::ServerContext* ctx, const v1::Refere
     resp->set_cache_key(cache_key);
     resp->set_scene(sc.name);
 
+    // Runs a job on the frame scheduler and waits for it, cancelling it if the client goes away
+    // or the server drains.
+    auto run = [&](const std::shared_ptr<ReferenceJob>& job, const char* what) {
+      core_.scheduler.enqueue(job);
+      while (!job->wait_for(k_poll)) {
+        if (ctx && ctx->IsCancelled()) {
+          job->cancel();
+          fail(grpc::StatusCode::CANCELLED, "the client cancelled RenderReference");
+        }
+        if (core_.draining.load()) {
+          job->cancel();
+          fail(grpc::StatusCode::UNAVAILABLE, std::string("stratad is draining (shutting down): ") + what + " was not finished");
+        }
+      }
+      const grpc::Status st = job->status();
+      if (!st.ok()) throw ServiceError(st.error_code(), std::string(what) + ": " + st.error_message());
+    };
+
     std::string why;
     if (auto entry = cache_.load(cache_key, &why)) {
       resp->set_cached(true);
       respond(req, *entry, resp);
+      if (mask) {
+        auto job = std::make_shared<ReferenceJob>(core_.ctx, core_.scheduler, loaded.scene, nullptr, mask);
+        run(job, "the disocclusion mask");
+        resp->set_disoccluded_mask(std::string(job->mask().begin(), job->mask().end()));
+      }
       resp->set_render_ms(ms_since(start));
       return;
     }
@@ -214,21 +260,9 @@ grpc::Status ReferenceService::render(grpc::ServerContext* ctx, const v1::Refere
     settings.seed = key.seed;
     settings.spp = key.spp;
     settings.relative_error = target;
-    auto job = std::make_shared<ReferenceJob>(core_.scheduler, loaded.scene,
-                                              std::make_unique<render::ReferenceRender>(core_.ctx, sc, key.frame, settings));
-    core_.scheduler.enqueue(job);
-    while (!job->wait_for(k_poll)) {
-      if (ctx && ctx->IsCancelled()) {
-        job->cancel();
-        fail(grpc::StatusCode::CANCELLED, "the client cancelled RenderReference");
-      }
-      if (core_.draining.load()) {
-        job->cancel();
-        fail(grpc::StatusCode::UNAVAILABLE, "stratad is draining (shutting down): the reference was not finished");
-      }
-    }
-    const grpc::Status st = job->status();
-    if (!st.ok()) throw ServiceError(st.error_code(), "rendering the reference: " + st.error_message());
+    auto job = std::make_shared<ReferenceJob>(core_.ctx, core_.scheduler, loaded.scene,
+                                              std::make_unique<render::ReferenceRender>(core_.ctx, sc, key.frame, settings), mask);
+    run(job, "rendering the reference");
     const render::ReferenceEntry entry = job->result();
     try {
       cache_.store(cache_key, entry);
@@ -237,7 +271,7 @@ grpc::Status ReferenceService::render(grpc::ServerContext* ctx, const v1::Refere
     }
     resp->set_cached(false);
     respond(req, entry, resp);
-    // disoccluded_mask stays empty: the pass that fills it from previous_frame comes later.
+    if (mask) resp->set_disoccluded_mask(std::string(job->mask().begin(), job->mask().end()));
     resp->set_render_ms(ms_since(start));
   });
 }

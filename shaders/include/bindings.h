@@ -21,6 +21,7 @@
 #define BINDING_RESERVOIRS_IN 16   // reservoirs a pass reads at other pixels (history, neighbours)
 #define BINDING_RESERVOIRS_OUT 17  // reservoirs a pass writes (and reads at its own pixel)
 #define BINDING_CONTRIBUTION 18    // per pixel: f(Y) of the reservoir at that pixel, in its domain
+#define BINDING_DISOCCLUSION 19    // disocclusion pass: one uint per pixel out
 
 // Specialization constants of the passes (constant_id).
 #define SPEC_THIN_LENS 0
