@@ -51,7 +51,8 @@ RestirGather::RestirGather(const SharedResources& shared, const RenderSettings& 
   work_ = gpu::Buffer(ctx, sizeof(gpu::PackedReservoir) * pixels, gpu::k_storage_usage, gpu::Memory::Device, "reservoirs (work)");
   for (auto& h : history_)
     h = gpu::Buffer(ctx, sizeof(gpu::PackedReservoir) * pixels, gpu::k_storage_usage, gpu::Memory::Device, "reservoirs (history)");
-  contribution_ = gpu::Buffer(ctx, sizeof(glm::vec4) * pixels, gpu::k_storage_usage, gpu::Memory::Device, "contribution");
+  // Per pixel: f(Y) of the reservoir there, then (second half) what the camera rays see directly.
+  contribution_ = gpu::Buffer(ctx, 2 * sizeof(glm::vec4) * pixels, gpu::k_storage_usage, gpu::Memory::Device, "contribution");
 
   auto common = [](bool lights, bool history) {
     auto b = GpuScene::bindings(lights, history);
@@ -67,7 +68,10 @@ RestirGather::RestirGather(const SharedResources& shared, const RenderSettings& 
     return b;
   };
   initial_ = std::make_unique<Pass>(ctx, "restir_initial", common(true, false));
-  if (settings.restir.temporal) temporal_ = std::make_unique<Pass>(ctx, "restir_temporal", with_in(common(false, true)));
+  const bool splat = settings.method == "restir-splat";
+  if (settings.restir.temporal && !splat) temporal_ = std::make_unique<Pass>(ctx, "restir_temporal", with_in(common(false, true)));
+  if (settings.restir.temporal && splat)
+    splat_ = std::make_unique<SplatTemporal>(shared, settings.width, settings.height, restir_constants_, work_, history_, contribution_);
   if (settings.restir.spatial) spatial_ = std::make_unique<Pass>(ctx, "restir_spatial", with_in(common(false, false)));
   shade_ = std::make_unique<Pass>(ctx, "restir_shade",
                                   std::vector<gpu::Binding>{{BINDING_FRAME, k_uniform},
@@ -118,9 +122,11 @@ void RestirGather::record(VkCommandBuffer cmd, gpu::PassTimer& timer, const Meth
   gpu::compute_barrier(cmd);
   timer.end(cmd);
 
-  ran_temporal_ = temporal_ && f.history_valid;
-  temporal_reason_ = !temporal_ ? "disabled (restir.temporal = false)" : !f.history_valid ? "no previous frame yet" : "";
-  if (ran_temporal_) {
+  ran_temporal_ = (temporal_ || splat_) && f.history_valid;
+  temporal_reason_ = !(temporal_ || splat_) ? "disabled (restir.temporal = false)" : !f.history_valid ? "no previous frame yet" : "";
+  if (ran_temporal_ && splat_) {
+    splat_->record(cmd, timer, int(parity));
+  } else if (ran_temporal_) {
     timer.begin(cmd, "temporal");
     gpu::dispatch_2d(cmd, temporal_->pipeline, *temporal_->sets[parity], w, h);
     gpu::compute_barrier(cmd);
@@ -151,17 +157,22 @@ std::vector<PassDecision> RestirGather::decisions() const {
           {"domain_init", false, "single-layer domains: one per pixel"},
           {"initial", true, std::to_string(o.initial_candidates) + " candidate path(s), " + std::to_string(o.light_candidates) +
                                 " light candidate(s) per vertex, " + paths},
-          {"temporal", ran_temporal_, ran_temporal_ ? "gather, " + o.shift + " shift, " + (o.unbiased ? "reverse-shift MIS" : "confidence weights (biased)")
-                                                    : temporal_reason_},
+          {"temporal", ran_temporal_,
+           !ran_temporal_ ? temporal_reason_
+           : splat_       ? "splat (counting sort; reprojection + " + o.shift + " shift, reverse-splat MIS, bilinear confidence)"
+                          : "gather, " + o.shift + " shift, " + (o.unbiased ? "reverse-shift MIS" : "confidence weights (biased)")},
           {"spatial", bool(spatial_), spatial_ ? std::to_string(o.spatial_neighbors) + " neighbour(s), " + o.mis + " MIS"
                                                : "disabled (restir.spatial = false)"},
           {"shade", true, "f(Y) W"}};
 }
 
 std::map<std::string, uint64_t> RestirGather::memory_bytes() const {
-  return {{"reservoirs", work_.size() + history_[0].size() + history_[1].size()},
-          {"contribution", contribution_.size()},
-          {"frame_constants_and_counters", restir_constants_.size()}};
+  std::map<std::string, uint64_t> m = {{"reservoirs", work_.size() + history_[0].size() + history_[1].size()},
+                                       {"contribution", contribution_.size()},
+                                       {"frame_constants_and_counters", restir_constants_.size()}};
+  if (splat_)
+    for (const auto& [group, bytes] : splat_->memory_bytes()) m[group] += bytes;
+  return m;
 }
 
 void RestirGather::collect(std::span<const uint32_t> c, FrameStats& s) const {

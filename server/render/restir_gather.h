@@ -1,12 +1,13 @@
 #pragma once
-// Methods `restir-gather` and `restir-di` (issue 4): the passes initial, temporal (gather:
-// backprojection), spatial and shade over per-session reservoir buffers that persist between
+// Methods `restir-gather`, `restir-di` (issue 4) and `restir-splat` (issue 5): the passes initial,
+// temporal (gather: backprojection; or splatting, render/splat_temporal.h), spatial and shade over per-session reservoir buffers that persist between
 // frames. restir-di is the same resampling restricted to one-bounce paths (DESIGN.md section 2).
 #include <array>
 #include <memory>
 
 #include "render/method.h"
 #include "render/renderer.h"
+#include "render/splat_temporal.h"
 
 namespace strata::render {
 
@@ -26,8 +27,10 @@ class RestirGather : public Method {
   gpu::Buffer restir_constants_;
   gpu::Buffer work_;                     // canonical, then temporal output (one reservoir per pixel)
   std::array<gpu::Buffer, 2> history_;   // final reservoirs, ping-pong by frame parity
-  gpu::Buffer contribution_;             // f(Y) of the reservoir currently at each pixel
+  gpu::Buffer contribution_;             // f(Y) of the reservoir currently at each pixel, then the
+                                         // pixel's directly seen emission (not resampled)
   std::unique_ptr<Pass> initial_, temporal_, spatial_, shade_;
+  std::unique_ptr<SplatTemporal> splat_;  // restir-splat: replaces temporal_
   bool ran_temporal_ = false;
   std::string temporal_reason_;
 };

@@ -6,6 +6,15 @@
 // weight w = m_i p-hat(X) / p(X) = luminance of its MIS-weighted contribution over
 // N_init * (candidates of its technique) (RS-main Eq. 4 with W_X = 1/p). Russian roulette starts only
 // after the reconnection vertex x_k is fixed, so the replayed prefix never depends on it.
+//
+// The reservoirs hold paths of two or more segments only. What the camera ray itself finds (x_1's
+// emission, or the environment when it escapes: the paths of one segment) is estimated by plain
+// Monte Carlo over the same N_init camera rays and added by the shade pass (restir_pass.glsl,
+// primary_emission_index). Resampling it would be unbiased but ruins spatial reuse: in a pixel that
+// sees an emitter, L_e(x_1) is almost all of the integral of p-hat, so the W of any longer path such a
+// reservoir holds is about L_e(x_1) / p-hat(y); no shift can carry the emission part to a pixel that
+// does not see the emitter, while that path shifts fine, and lands on a dim neighbour with the
+// emitter pixel's whole value (a resampling weight up to p-hat_j W_j = L_e).
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
 
@@ -23,6 +32,7 @@ uint g_rays = 0u;
 GrisState g_state;
 Reservoir g_selected;
 vec3 g_selected_f;
+vec3 g_primary_emission;  // sum over the camera rays of what they see, over N_init
 Rng g_select_rng;
 
 // Streams one candidate: sample y with f(y) and its resampling weight.
@@ -55,21 +65,12 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
   RayHit h;
   g_rays++;
   if (!trace_closest(origin, dir, 1e30, h)) {
-    y.segments = 1u;
-    y.flags |= SAMPLE_ESCAPED;
-    y.density = 1.0;
-    offer(y, u_frame.environment.rgb, luminance(u_frame.environment.rgb) / n_init);
+    g_primary_emission += u_frame.environment.rgb / n_init;  // one segment: not resampled
     return;
   }
   Vertex v = load_vertex(false, h, dir);
   y.x1 = v.point;
-  if (luminance(v.emission) > 0.0) {
-    PathSample e = y;
-    e.segments = 1u;
-    e.flags |= SAMPLE_EMITTER_HIT;
-    e.density = 1.0;
-    offer(e, v.emission, luminance(v.emission) / n_init);
-  }
+  g_primary_emission += v.emission / n_init;  // one segment: not resampled
   float camera_distance = length(v.position);
   float light_count = float(u_restir.light_candidates);
 
@@ -217,6 +218,7 @@ void main() {
   g_state = gris_begin();
   g_selected = reservoir_empty();
   g_selected_f = vec3(0.0);
+  g_primary_emission = vec3(0.0);
   g_select_rng = rng_init(index, 0x51EC7u, u_frame.frame_index, u_frame.seed);
   float n_init = float(u_restir.initial_candidates);
   for (uint p = 0u; p < u_restir.initial_candidates; ++p)
@@ -233,6 +235,7 @@ void main() {
     f = vec3(0.0);
   }
   store_output(index, r, f);
+  b_contribution[primary_emission_index(index)] = vec4(g_primary_emission, 0.0);
   if (g_state.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], g_state.rejected);
   atomicAdd(b_counters[COUNTER_RAYS_INITIAL], g_rays);
   atomicAdd(b_counters[COUNTER_PATHS], u_restir.initial_candidates);

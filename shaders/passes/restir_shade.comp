@@ -1,6 +1,8 @@
 #version 460
 // Pass `shade` (DESIGN.md section 2): each pixel's estimate f(Y) W_Y from its final reservoir
-// (GRIS, RS-main Eq. 5), added to the accumulation buffer as one sample.
+// (GRIS, RS-main Eq. 5), plus the initial pass's estimate of what the camera rays see directly
+// (paths of one segment, which are not resampled: restir_initial.comp), added to the accumulation
+// buffer as one sample.
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
@@ -22,6 +24,7 @@ void main() {
   Reservoir r = unpack_reservoir(b_in[index]);
   vec3 l = vec3(0.0);
   if ((r.y.flags & SAMPLE_VALID) != 0u) l = b_contribution[index].rgb * r.ucw;
+  l += b_contribution[u_frame.width * u_frame.height + index].rgb;  // restir_pass.glsl, primary_emission_index
   // DESIGN.md section 6: a non-finite or negative estimate never reaches a pixel; it is counted.
   if (any(isnan(l)) || any(isinf(l)) || any(lessThan(l, vec3(0.0)))) {
     atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], 1u);

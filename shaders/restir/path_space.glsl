@@ -2,7 +2,8 @@
 // hybrid shifts in the form strata's path samples take (restir/reservoir.h).
 //
 // Sample space. A domain's integral is over the subpixel position (box filter, density 1), the lens
-// sample, and the directions of the path in solid angle; the target function is the luminance of
+// sample, and the directions of the path in solid angle, for paths of two or more segments (what the
+// camera ray sees directly is not resampled: restir_initial.comp); the target function is the luminance of
 //   f(x) = prod_{i=1}^{n-1} f_s(x_i) |cos theta_i| * L_e(x_n) * m_t(x)
 // where m_t is the MIS weight of the technique t (NEE or BSDF sampling) that produced the last
 // vertex: the technique is part of the sample, so both techniques' candidates partition the space.
@@ -60,7 +61,8 @@ ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed)
   uint k = y.k;
   bool escaped = (y.flags & SAMPLE_ESCAPED) != 0u;
   bool nee = (y.flags & SAMPLE_NEE) != 0u;
-  if (n == 0u || n > u_restir.max_segments || k > n || k == 1u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
+  // Paths of one segment are not resampled (restir_initial.comp): no reservoir holds one.
+  if (n < 2u || n > u_restir.max_segments || k > n || k == 1u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
   if (suffix_changed && k != 0u && k < n) return shift_fail(r, SHIFT_FAIL_STALE);
   // The pure reconnection shift replays only the camera sample and reconnects at x_2.
   if (u_restir.shift_mode == SHIFT_RECONNECTION && n > 1u && k != 2u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
@@ -98,9 +100,9 @@ ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed)
     r.rays++;
     if (!trace_closest_in(prev, origin, dir, 1e30, h)) {
       if (!(path_end && escaped)) return shift_fail(r, j == 0u ? SHIFT_FAIL_PRIMARY : SHIFT_FAIL_REPLAY);
-      if (j > 0u && rule_end(v, true, 0.0, camera_distance, 1.0)) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
+      if (rule_end(v, true, 0.0, camera_distance, 1.0)) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
       le = u_frame.environment.rgb;
-      pl = j > 0u ? light_pdf_environment(prev) : 0.0;
+      pl = light_pdf_environment(prev);
       break;
     }
     if (path_end && escaped) return shift_fail(r, j == 0u ? SHIFT_FAIL_PRIMARY : SHIFT_FAIL_REPLAY);
@@ -108,7 +110,6 @@ ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed)
     if (j == 0u) {
       r.x1 = w.point;
       camera_distance = length(w.position);
-      if (path_end) le = w.emission;
     } else {
       float edge = length(w.position - v.position);
       if (path_end) {
@@ -181,8 +182,8 @@ ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed)
     r.f = f_prefix * fs * tail;
     r.density = density / (geometry * area);
   } else {
-    // k = 0: the loop replayed the whole path; a camera-seen end (n = 1) is not MIS-weighted.
-    r.f = f_prefix * le * (n == 1u ? 1.0 : technique_weight(false, pl, pdf));
+    // k = 0: the loop replayed the whole path.
+    r.f = f_prefix * le * technique_weight(false, pl, pdf);
     r.density = density;
   }
   if (!(luminance(r.f) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);

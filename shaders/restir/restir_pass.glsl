@@ -17,6 +17,12 @@ layout(set = 0, binding = BINDING_CONTRIBUTION, std430) buffer Contribution { ve
 
 uint pixel_index(uvec2 p) { return p.y * u_frame.width + p.x; }
 
+// The contribution buffer holds two vec4 per pixel: f(Y) of the reservoir at the pixel (first
+// half), and the pixel's estimate of what its camera rays see directly, x_1's emission or the
+// environment (second half; written by the initial pass, added by the shade pass). Paths of one
+// segment are never resampled (restir_initial.comp).
+uint primary_emission_index(uint index) { return u_frame.width * u_frame.height + index; }
+
 Reservoir reservoir_empty() {
   Reservoir r;
   r.y.x1 = surface_none();

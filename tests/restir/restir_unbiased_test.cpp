@@ -99,6 +99,13 @@ scene::FrameState moving_camera(const scene::Scene& s, uint32_t f) {
   return st;
 }
 
+// Forward motion only: the image magnifies, so splats spread out and leave holes (RS-main 4.2).
+scene::FrameState forward_camera(const scene::Scene& s, uint32_t f) {
+  scene::FrameState st = s.frame_state(0);
+  st.camera.position += glm::vec3(0.0f, 0.0f, -0.25f * float(f));
+  return st;
+}
+
 std::vector<Case> cases() {
   std::vector<Case> v;
   v.push_back({.name = "initial_only", .scene = "cornell", .options = [](render::RestirOptions& o) {
@@ -120,6 +127,13 @@ std::vector<Case> cases() {
   v.push_back({.name = "carousel_moving_glossy", .scene = "carousel"});
   v.push_back({.name = "di_mode", .scene = "cornell", .method = "restir-di", .max_depth = 2,
                .options = [](render::RestirOptions& o) { o.light_candidates = 4; }});
+  // restir-splat (issue 5): the temporal reuse alone (spatial off) under each kind of motion, and
+  // with the default spatial reuse on the moving, glossy carousel.
+  auto splat_only = [](render::RestirOptions& o) { o.spatial = false; };
+  v.push_back({.name = "splat_static", .scene = "cornell", .method = "restir-splat", .options = splat_only});
+  v.push_back({.name = "splat_moving_camera", .scene = "cornell", .method = "restir-splat", .options = splat_only, .state = moving_camera});
+  v.push_back({.name = "splat_forward_motion", .scene = "cornell", .method = "restir-splat", .options = splat_only, .state = forward_camera});
+  v.push_back({.name = "splat_carousel", .scene = "carousel", .method = "restir-splat"});
   return v;
 }
 

@@ -1,0 +1,118 @@
+#include "render/splat_temporal.h"
+
+#include "include/bindings.h"
+#include "include/frame_data.h"
+#include "restir/splat_data.h"
+
+namespace strata::render {
+namespace {
+
+constexpr VkDescriptorType k_storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+constexpr VkDescriptorType k_uniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+
+}  // namespace
+
+// One pass: its pipeline and a descriptor set per frame parity.
+struct SplatTemporal::Pass {
+  gpu::ComputePipeline pipeline;
+  std::array<std::unique_ptr<gpu::DescriptorSet>, 2> sets;
+  Pass(const gpu::Context& ctx, const char* shader, std::vector<gpu::Binding> bindings)
+      : pipeline(ctx, shader, bindings, std::vector<gpu::SpecConstant>{}, 0) {
+    for (auto& s : sets) s = std::make_unique<gpu::DescriptorSet>(ctx, pipeline);
+  }
+};
+
+SplatTemporal::SplatTemporal(const SharedResources& shared, uint32_t width, uint32_t height, const gpu::Buffer& restir_constants,
+                             const gpu::Buffer& work, const std::array<gpu::Buffer, 2>& history, const gpu::Buffer& contribution)
+    : width_(width), height_(height) {
+  const auto& ctx = shared.ctx;
+  const size_t pixels = size_t(width) * height;
+  auto storage = [&](size_t bytes, const char* name) { return gpu::Buffer(ctx, bytes, gpu::k_storage_usage, gpu::Memory::Device, name); };
+  splats_ = storage(sizeof(gpu::SplatRecord) * pixels, "splats");
+  target_ = storage(sizeof(uint32_t) * pixels, "splat targets");
+  count_ = storage(sizeof(uint32_t) * pixels, "splat counts");
+  offsets_ = storage(sizeof(uint32_t) * (pixels + 1), "splat offsets");
+  list_ = storage(sizeof(uint32_t) * pixels, "splat list");
+
+  // The ReSTIR passes' common bindings (restir_pass.glsl) with the scene and its history.
+  auto restir = [](std::vector<gpu::Binding> extra) {
+    auto b = GpuScene::bindings(/*with_lights=*/false, /*with_history=*/true);
+    for (auto x : {BINDING_FRAME, BINDING_RESTIR}) b.push_back({uint32_t(x), k_uniform});
+    for (auto x : {BINDING_COUNTERS, BINDING_RESERVOIRS_OUT, BINDING_CONTRIBUTION, BINDING_RESERVOIRS_IN}) b.push_back({uint32_t(x), k_storage});
+    b.insert(b.end(), extra.begin(), extra.end());
+    return b;
+  };
+  project_ = std::make_unique<Pass>(ctx, "restir_splat_project",
+                                    restir({{BINDING_SPLATS, k_storage}, {BINDING_SPLAT_TARGET, k_storage}, {BINDING_SPLAT_COUNT, k_storage}}));
+  scan_ = std::make_unique<Pass>(ctx, "restir_splat_scan",
+                                 std::vector<gpu::Binding>{{BINDING_FRAME, k_uniform}, {BINDING_SPLAT_COUNT, k_storage}, {BINDING_SPLAT_OFFSETS, k_storage}});
+  insert_ = std::make_unique<Pass>(ctx, "restir_splat_insert",
+                                   std::vector<gpu::Binding>{{BINDING_FRAME, k_uniform},
+                                                             {BINDING_SPLAT_TARGET, k_storage},
+                                                             {BINDING_SPLAT_COUNT, k_storage},
+                                                             {BINDING_SPLAT_OFFSETS, k_storage},
+                                                             {BINDING_SPLAT_LIST, k_storage}});
+  resample_ = std::make_unique<Pass>(ctx, "restir_splat_resample",
+                                     restir({{BINDING_SPLATS, k_storage}, {BINDING_SPLAT_OFFSETS, k_storage}, {BINDING_SPLAT_LIST, k_storage}}));
+
+  for (int parity = 0; parity < 2; ++parity) {
+    const gpu::Buffer& previous = history[size_t(1 - parity)];
+    for (Pass* p : {project_.get(), resample_.get()}) {
+      auto& set = *p->sets[size_t(parity)];
+      shared.scene.bind(set, /*with_lights=*/false, /*with_history=*/true, parity);
+      set.bind_buffer(BINDING_FRAME, shared.constants);
+      set.bind_buffer(BINDING_RESTIR, restir_constants);
+      set.bind_buffer(BINDING_COUNTERS, shared.counters);
+      set.bind_buffer(BINDING_RESERVOIRS_OUT, work);
+      set.bind_buffer(BINDING_CONTRIBUTION, contribution);
+      set.bind_buffer(BINDING_RESERVOIRS_IN, previous);
+      set.bind_buffer(BINDING_SPLATS, splats_);
+    }
+    auto& pj = *project_->sets[size_t(parity)];
+    pj.bind_buffer(BINDING_SPLAT_TARGET, target_);
+    pj.bind_buffer(BINDING_SPLAT_COUNT, count_);
+    auto& rs = *resample_->sets[size_t(parity)];
+    rs.bind_buffer(BINDING_SPLAT_OFFSETS, offsets_);
+    rs.bind_buffer(BINDING_SPLAT_LIST, list_);
+    auto& sc = *scan_->sets[size_t(parity)];
+    sc.bind_buffer(BINDING_FRAME, shared.constants);
+    sc.bind_buffer(BINDING_SPLAT_COUNT, count_);
+    sc.bind_buffer(BINDING_SPLAT_OFFSETS, offsets_);
+    auto& in = *insert_->sets[size_t(parity)];
+    in.bind_buffer(BINDING_FRAME, shared.constants);
+    in.bind_buffer(BINDING_SPLAT_TARGET, target_);
+    in.bind_buffer(BINDING_SPLAT_COUNT, count_);
+    in.bind_buffer(BINDING_SPLAT_OFFSETS, offsets_);
+    in.bind_buffer(BINDING_SPLAT_LIST, list_);
+  }
+}
+
+SplatTemporal::~SplatTemporal() = default;
+
+void SplatTemporal::record(VkCommandBuffer cmd, gpu::PassTimer& timer, int parity) {
+  const size_t p = size_t(parity);
+  timer.begin(cmd, "splat_project");
+  vkCmdFillBuffer(cmd, count_.handle(), 0, VK_WHOLE_SIZE, 0);
+  gpu::compute_barrier(cmd);
+  gpu::dispatch_2d(cmd, project_->pipeline, *project_->sets[p], width_, height_);
+  gpu::compute_barrier(cmd);
+  timer.end(cmd);
+  timer.begin(cmd, "splat_scan");
+  gpu::dispatch_1d(cmd, scan_->pipeline, *scan_->sets[p], 1);
+  gpu::compute_barrier(cmd);
+  timer.end(cmd);
+  timer.begin(cmd, "splat_insert");
+  gpu::dispatch_2d(cmd, insert_->pipeline, *insert_->sets[p], width_, height_);
+  gpu::compute_barrier(cmd);
+  timer.end(cmd);
+  timer.begin(cmd, "splat_resample");
+  gpu::dispatch_2d(cmd, resample_->pipeline, *resample_->sets[p], width_, height_);
+  gpu::compute_barrier(cmd);
+  timer.end(cmd);
+}
+
+std::map<std::string, uint64_t> SplatTemporal::memory_bytes() const {
+  return {{"splats", splats_.size() + target_.size() + count_.size() + offsets_.size() + list_.size()}};
+}
+
+}  // namespace strata::render

@@ -1,0 +1,50 @@
+#version 460
+// Pass `splat_project` (restir-splat; RS-supp 3.1 steps 1 and 3 of the counting sort, with the
+// shifts computed here): every previous pixel i's reservoir X_i is splatted forward into the current
+// frame (RS-main 4.1.1: primary hit kept in object space, projected through the new camera, visible
+// from the new lens vertex, suffix by the hybrid shift), and counted in the current pixel it lands
+// in. The record keeps what the resampling weights of RS-main Eq. 10-11 need.
+#extension GL_EXT_ray_query : require
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+#define STRATA_HISTORY 1
+#include "include/scene_bridge.glsl"
+#include "restir/restir_pass.glsl"
+#include "restir/splat.glsl"
+#include "restir/splat_data.h"
+
+layout(set = 0, binding = BINDING_RESERVOIRS_IN, std430) readonly buffer ReservoirsIn { PackedReservoir b_in[]; };
+layout(set = 0, binding = BINDING_SPLATS, std430) writeonly buffer Splats { SplatRecord b_splats[]; };
+layout(set = 0, binding = BINDING_SPLAT_TARGET, std430) writeonly buffer Targets { uint b_target[]; };
+layout(set = 0, binding = BINDING_SPLAT_COUNT, std430) buffer Counts { uint b_count[]; };
+
+void main() {
+  uvec2 prev_pixel = gl_GlobalInvocationID.xy;
+  if (prev_pixel.x >= u_frame.prev_width || prev_pixel.y >= u_frame.prev_height) return;
+  uint i = prev_pixel.y * u_frame.prev_width + prev_pixel.x;
+  b_target[i] = SPLAT_NONE;
+  Reservoir x = unpack_reservoir(b_in[i]);
+  if (!reservoir_valid(x)) return;
+  bool moved = (u_frame.history_flags & HISTORY_SCENE_MOVED) != 0u;
+  SplatResult s = splat_path(false, x.y, moved);
+  atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
+  atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], s.shift.rays);
+  if (s.shift.reason != SHIFT_OK) {
+    atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + s.shift.reason], 1u);
+    return;
+  }
+  Reservoir y = x;  // W, confidence and p-hat_prev of X_i; the sample becomes Y_i
+  y.y.x1 = s.shift.x1;
+  y.y.jitter = s.jitter;
+  y.y.density = s.shift.density;
+  y.confidence = confidence_capped(x.confidence, u_restir.confidence_cap);  // RS-main 3.4
+  SplatRecord rec;
+  rec.reservoir = pack_reservoir(y);
+  rec.f_jacobian = vec4(s.shift.f, s.jacobian);
+  b_splats[i] = rec;
+  uint j = s.pixel.y * u_frame.width + s.pixel.x;
+  b_target[i] = j;
+  atomicAdd(b_count[j], 1u);
+}

@@ -1,0 +1,125 @@
+// Reservoir splatting's reprojection shift (RS-main 4.1.1, 4.1.3): a path keeps its primary hit x_1
+// in object space (y_1 = M M_prev^-1 x_1, which loading x_1's surface point with the target frame's
+// instance transform gives directly), is projected through the target frame's camera (pinhole or
+// thin lens with the lens sample kept, RS-main 4.5) to the subpixel position u it lands on, must be
+// visible from the lens vertex y_0 (the camera ray through u must hit x_1's triangle again), and its
+// suffix is then shifted by the hybrid shift from there (path_space.glsl).
+//
+// Jacobian (RS-main Eq. 14-16) in strata's subpixel parametrization: |du/dv| = p_u(y_1) / p_u(x_1)
+// times |dy_1/dx_1| (the ratio of x_1's triangle areas, 1 for rigid motion), where
+//   p_u(x_1) = |du/dx_1| = cos theta_N / (|x_1 - x_0|^2 cos^3 theta_V s),  s = 4 |right| |up| / (W H)
+// is the density of the primary hit in area measure per unit subpixel area (RS-main Eq. 15 with the
+// image-plane scale s kept, so that a zoom or a resolution change is exact). The whole shift's
+// Jacobian is that times the hybrid shift's density(x) / density(y).
+#ifndef STRATA_SPLAT_GLSL
+#define STRATA_SPLAT_GLSL
+
+#include "restir/path_space.glsl"
+
+struct SplatResult {
+  ShiftResult shift;  // the offset path (reason, f, density, x1)
+  uvec2 pixel;        // where it landed
+  vec2 jitter;        // its subpixel position there
+  float jacobian;     // |T'(x)| of the whole shift (0 when it failed)
+};
+
+// The primary hit's surface point of a sample in a frame (render space of that frame).
+SurfaceHit x1_in(bool prev, SurfacePoint x1, out bool ok) {
+  ok = x1.instance != SURFACE_NONE && x1.instance < uint(b_instances.length()) && instance_in(prev, x1.instance).lod == x1.lod;
+  RayHit h;
+  h.t = 0.0;
+  h.instance = ok ? x1.instance : 0u;
+  h.geometry = x1.geometry;
+  h.triangle = x1.triangle;
+  h.bary = x1.bary;
+  return load_hit_in(prev, h);
+}
+
+// p_u of a primary hit at `p` (render space: the lens centre at the origin) with normal `n`, seen
+// from lens point `lens_point` of camera `cam` whose image has w x h pixels.
+float subpixel_density(GpuCamera cam, uint w, uint h, vec3 p, vec3 n, vec3 lens_point) {
+  vec3 e = p - lens_point;
+  float d2 = dot(e, e);
+  if (!(d2 > 0.0)) return 0.0;
+  vec3 dir = e * inversesqrt(d2);
+  float cos_n = abs(dot(n, dir));
+  float cos_v = dot(normalize(cam.forward.xyz), dir);
+  float s = 4.0 * length(cam.right.xyz) * length(cam.up.xyz) / (float(w) * float(h));
+  if (!(cos_v > 0.0) || !(cos_n > 0.0)) return 0.0;
+  return cos_n / (d2 * cos_v * cos_v * cos_v * s);
+}
+
+// The lens vertex of a lens sample (render space); the origin for a pinhole.
+vec3 lens_point(GpuCamera cam, vec2 lens) {
+  if (!(cam.lens.x > 0.0)) return vec3(0.0);
+  vec2 disk = sample_concentric_disk(lens) * cam.lens.x;
+  return disk.x * normalize(cam.right.xyz) + disk.y * normalize(cam.up.xyz);
+}
+
+// Projects p through the thin lens from lens point o to the image (pixel + subpixel); false when it
+// falls outside. For a pinhole (o = 0) this is the perspective projection.
+bool project(GpuCamera cam, uint w, uint h, vec3 p, vec3 o, out uvec2 pixel, out vec2 jitter) {
+  vec3 fwd = cam.forward.xyz;
+  vec3 e = p - o;
+  float along = dot(fwd, e);
+  if (!(along > 0.0)) return false;
+  float focus = cam.lens.x > 0.0 ? cam.lens.y : 1.0;
+  vec3 d = (o + e * ((focus - dot(fwd, o)) / along)) / focus;  // on the plane forward . d = 1
+  float x = dot(d, cam.right.xyz) / dot(cam.right.xyz, cam.right.xyz);
+  float y = dot(d, cam.up.xyz) / dot(cam.up.xyz, cam.up.xyz);
+  vec2 s = vec2((x + 1.0) * 0.5 * float(w), (1.0 - y) * 0.5 * float(h));
+  if (!(s.x >= 0.0 && s.y >= 0.0 && s.x < float(w) && s.y < float(h))) return false;
+  pixel = uvec2(s);
+  jitter = clamp(s - vec2(pixel), vec2(0.0), vec2(0.99999994));
+  return true;
+}
+
+// Splats sample y (of the other frame: the previous one when `prev` is false, and the reverse) into
+// the current (prev = false) or previous frame. suffix_changed: the scene moved between the frames.
+SplatResult splat_path(bool prev, PathSample y, bool suffix_changed) {
+  SplatResult r;
+  r.pixel = uvec2(0u);
+  r.jitter = vec2(0.0);
+  r.jacobian = 0.0;
+  r.shift.reason = SHIFT_FAIL_PRIMARY;
+  r.shift.f = vec3(0.0);
+  r.shift.density = 0.0;
+  r.shift.x1 = surface_none();
+  r.shift.rays = 0u;
+  bool ok_from;
+  bool ok_to;
+  SurfaceHit from = x1_in(!prev, y.x1, ok_from);  // x_1 in the sample's own frame
+  SurfaceHit to = x1_in(prev, y.x1, ok_to);       // y_1 in the target frame
+  if (!ok_from || !ok_to) {
+    r.shift.reason = SHIFT_FAIL_STALE;  // gone, or another LoD level
+    return r;
+  }
+  GpuCamera cam_from = camera_in(!prev);
+  GpuCamera cam_to = camera_in(prev);
+  uint w_from = prev ? u_frame.width : u_frame.prev_width;
+  uint h_from = prev ? u_frame.height : u_frame.prev_height;
+  uint w_to = prev ? u_frame.prev_width : u_frame.width;
+  uint h_to = prev ? u_frame.prev_height : u_frame.height;
+  vec3 o_to = lens_point(cam_to, y.lens);
+  if (!project(cam_to, w_to, h_to, to.position, o_to, r.pixel, r.jitter)) return r;  // off screen
+  float p_from = subpixel_density(cam_from, w_from, h_from, from.position, from.geo_normal, lens_point(cam_from, y.lens));
+  float p_to = subpixel_density(cam_to, w_to, h_to, to.position, to.geo_normal, o_to);
+  float area_ratio = from.area > 0.0 ? to.area / from.area : 0.0;  // |dy_1/dx_1|
+  PathSample moved = y;
+  moved.jitter = r.jitter;
+  r.shift = shift_path(prev, vec2(r.pixel), moved, suffix_changed);
+  // Visibility of y_1 from y_0 (RS-main 4.1.1): the camera ray through u must find x_1's triangle.
+  if (r.shift.reason == SHIFT_OK &&
+      (r.shift.x1.instance != y.x1.instance || r.shift.x1.geometry != y.x1.geometry || r.shift.x1.triangle != y.x1.triangle))
+    r.shift = shift_fail(r.shift, SHIFT_FAIL_PRIMARY);
+  if (r.shift.reason != SHIFT_OK) return r;
+  float j = shift_jacobian(y.density, r.shift.density) * (p_from > 0.0 ? p_to / p_from : 0.0) * area_ratio;
+  if (!(j >= 1.0 / SHIFT_MAX_JACOBIAN && j <= SHIFT_MAX_JACOBIAN)) {
+    r.shift = shift_fail(r.shift, SHIFT_FAIL_JACOBIAN);
+    return r;
+  }
+  r.jacobian = j;
+  return r;
+}
+
+#endif
