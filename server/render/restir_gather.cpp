@@ -186,6 +186,14 @@ void RestirGather::collect(std::span<const uint32_t> c, FrameStats& s) const {
   s.reuse["temporal.no_history"] = c[COUNTER_TEMPORAL_NO_HISTORY];
   s.reuse["temporal.selected"] = c[COUNTER_TEMPORAL_SELECTED];
   s.reuse["temporal.validation_refused"] = c[COUNTER_TEMPORAL_INVALID];
+  if (splat_) {
+    // RS-main statistics of splatting: splats per pixel (mean over pixels is landed / pixels), the
+    // fullest pixel, and holes (pixels no splat reached: temporal.no_history).
+    s.reuse["splat.landed"] = c[COUNTER_SPLATS_LANDED];
+    s.reuse["splat.max_per_pixel"] = c[COUNTER_SPLATS_MAX];
+    s.reuse["splat.holes"] = c[COUNTER_TEMPORAL_NO_HISTORY];
+    s.reuse["splat.visibility_failed"] = c[COUNTER_TEMPORAL_FAIL + SHIFT_FAIL_PRIMARY];
+  }
   s.reuse["spatial.shifts"] = c[COUNTER_SPATIAL_SHIFTS];
   s.reuse["spatial.selected"] = c[COUNTER_SPATIAL_SELECTED];
   for (uint32_t r = 1; r < SHIFT_REASONS; ++r) {

@@ -99,6 +99,8 @@ void main() {
   }
   if (st.selected != 0u && st.selected != GRIS_NONE) atomicAdd(b_counters[COUNTER_TEMPORAL_SELECTED], 1u);
   if (last == first) atomicAdd(b_counters[COUNTER_TEMPORAL_NO_HISTORY], 1u);  // a hole: no splat landed here
+  atomicAdd(b_counters[COUNTER_SPLATS_LANDED], last - first);
+  atomicMax(b_counters[COUNTER_SPLATS_MAX], last - first);
   out_r.p_hat = st.selected_p_hat;
   out_r.ucw = gris_ucw(st);  // RS-main Eq. 5
   // RS-main Eq. 17.
