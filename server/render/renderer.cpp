@@ -55,7 +55,7 @@ void RestirOptions::validate() const {
           "restir.light_candidates = " + std::to_string(light_candidates) + " is outside [1, 32]");
 }
 
-std::vector<std::string> available_methods() { return {"pt", "restir-gather", "restir-di", "restir-splat"}; }
+std::vector<std::string> available_methods() { return {"pt", "restir-gather", "restir-di", "restir-splat", "restir-splat-backup"}; }
 
 
 Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSettings settings)

@@ -21,7 +21,7 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s) {
   c.confidence_cap = o.confidence_cap;
   c.spatial_radius = o.spatial_radius;
   c.spatial_neighbors = o.spatial_neighbors;
-  c.flags = o.unbiased ? gpu::RESTIR_UNBIASED : 0u;
+  c.flags = (o.unbiased ? gpu::RESTIR_UNBIASED : 0u) | (s.method == "restir-splat-backup" ? gpu::RESTIR_SPLAT_BACKUP : 0u);
   // ReSTIR DI: camera, x1, light (one bounce).
   c.max_segments = o.direct_lighting ? std::min<uint32_t>(2, s.max_depth) : s.max_depth;
   return c;
@@ -68,7 +68,7 @@ RestirGather::RestirGather(const SharedResources& shared, const RenderSettings& 
     return b;
   };
   initial_ = std::make_unique<Pass>(ctx, "restir_initial", common(true, false));
-  const bool splat = settings.method == "restir-splat";
+  const bool splat = settings.method == "restir-splat" || settings.method == "restir-splat-backup";
   if (settings.restir.temporal && !splat) temporal_ = std::make_unique<Pass>(ctx, "restir_temporal", with_in(common(false, true)));
   if (settings.restir.temporal && splat)
     splat_ = std::make_unique<SplatTemporal>(shared, settings.width, settings.height, restir_constants_, work_, history_, contribution_);
@@ -159,7 +159,8 @@ std::vector<PassDecision> RestirGather::decisions() const {
                                 " light candidate(s) per vertex, " + paths},
           {"temporal", ran_temporal_,
            !ran_temporal_ ? temporal_reason_
-           : splat_       ? "splat (counting sort; reprojection + " + o.shift + " shift, reverse-splat MIS, bilinear confidence)"
+           : splat_       ? std::string(settings_.method == "restir-splat-backup" ? "splat with backup sample" : "splat") +
+                                " (counting sort; reprojection + " + o.shift + " shift, reverse-splat MIS, bilinear confidence)"
                           : "gather, " + o.shift + " shift, " + (o.unbiased ? "reverse-shift MIS" : "confidence weights (biased)")},
           {"spatial", bool(spatial_), spatial_ ? std::to_string(o.spatial_neighbors) + " neighbour(s), " + o.mis + " MIS"
                                                : "disabled (restir.spatial = false)"},
@@ -193,6 +194,7 @@ void RestirGather::collect(std::span<const uint32_t> c, FrameStats& s) const {
     s.reuse["splat.max_per_pixel"] = c[COUNTER_SPLATS_MAX];
     s.reuse["splat.holes"] = c[COUNTER_TEMPORAL_NO_HISTORY];
     s.reuse["splat.visibility_failed"] = c[COUNTER_TEMPORAL_FAIL + SHIFT_FAIL_PRIMARY];
+    if (settings_.method == "restir-splat-backup") s.reuse["splat.backup_selected"] = c[COUNTER_SPLAT_BACKUP_SELECTED];
   }
   s.reuse["spatial.shifts"] = c[COUNTER_SPATIAL_SHIFTS];
   s.reuse["spatial.selected"] = c[COUNTER_SPATIAL_SELECTED];

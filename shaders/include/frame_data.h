@@ -69,7 +69,8 @@ CONST_DEF uint COUNTER_SPLATS_LANDED = 14u;         // restir-splat: previous re
 CONST_DEF uint COUNTER_SPLATS_MAX = 15u;            // restir-splat: most splats in one pixel (atomicMax)
 CONST_DEF uint COUNTER_TEMPORAL_FAIL = 16u;         // + reason, SHIFT_REASONS slots
 CONST_DEF uint COUNTER_SPATIAL_FAIL = 24u;          // + reason
-CONST_DEF uint COUNTER_COUNT = 32u;
+CONST_DEF uint COUNTER_SPLAT_BACKUP_SELECTED = 32u; // restir-splat-backup: pixels whose output is the backup sample
+CONST_DEF uint COUNTER_COUNT = 40u;
 
 STRATA_NAMESPACE_END
 

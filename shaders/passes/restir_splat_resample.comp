@@ -9,6 +9,10 @@
 // confidence of the previous pixel it lands in. The output confidence is that of RS-main 4.3
 // (Eq. 17): c* plus the bilinear interpolation of the previous confidences at the backprojected
 // pixel centre, capped.
+// restir-splat-backup (RS-main 4.2) adds the backup sample: the reservoir of the previous pixel b
+// that the pixel centre backprojects into, gather-shifted here (T_b). Its MIS (RS-supp Eq. 20-22)
+// adds the backup domain's term to every weight: T_b^-1 of each candidate into b, and the reverse
+// splat of Y^b; confidences are split with alpha = 0.5 (RS-supp 3.2).
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
 
@@ -30,26 +34,51 @@ float prev_confidence(ivec2 q) {
   return confidence_capped(unpack_reservoir(b_in[uint(q.y) * u_frame.prev_width + uint(q.x)]).confidence, u_restir.confidence_cap);
 }
 
-// RS-main 4.3: the previous confidences bilinearly interpolated at the backprojection of this
-// pixel's centre (its primary hit moved back with its object's previous transform); 0 when the
-// centre sees nothing, changed LoD level, or falls outside the previous image.
-float backprojected_confidence(uvec2 pixel) {
+// The backprojection of this pixel's centre (its primary hit moved back with its object's previous
+// transform) into the previous image; ok = false when the centre sees nothing, changed LoD level, or
+// falls outside. `confidence` is RS-main 4.3's (Eq. 17) bilinear interpolation of the previous
+// confidences there; `backup` the previous pixel it falls in (RS-main 4.2's rounded motion vector).
+struct Backprojection {
+  bool ok;
+  uvec2 backup;
+  float confidence;
+};
+
+Backprojection backproject_centre(uvec2 pixel) {
+  Backprojection bp;
+  bp.ok = false;
+  bp.backup = uvec2(0u);
+  bp.confidence = 0.0;
   vec3 origin;
   vec3 dir;
   primary_ray(u_frame.camera, vec2(pixel), vec2(0.5), vec2(0.5), origin, dir);
   RayHit h;
-  if (!trace_closest(origin, dir, 1e30, h)) return 0.0;
+  if (!trace_closest(origin, dir, 1e30, h)) return bp;
   GpuInstance before = instance_in(true, h.instance);
-  if (before.lod != b_instances[h.instance].lod) return 0.0;
+  if (before.lod != b_instances[h.instance].lod) return bp;
   vec3 p = load_hit_with(before, h).position;
-  uvec2 q;
   vec2 sub;
-  if (!project(u_frame.prev_camera, u_frame.prev_width, u_frame.prev_height, p, vec3(0.0), q, sub)) return 0.0;
-  vec2 s = vec2(q) + sub - 0.5;  // continuous coordinates of pixel centres
+  if (!project(u_frame.prev_camera, u_frame.prev_width, u_frame.prev_height, p, vec3(0.0), bp.backup, sub)) return bp;
+  bp.ok = true;
+  vec2 s = vec2(bp.backup) + sub - 0.5;  // continuous coordinates of pixel centres
   ivec2 b = ivec2(floor(s));
   vec2 t = s - vec2(b);
-  return (1.0 - t.x) * (1.0 - t.y) * prev_confidence(b) + t.x * (1.0 - t.y) * prev_confidence(b + ivec2(1, 0)) +
-         (1.0 - t.x) * t.y * prev_confidence(b + ivec2(0, 1)) + t.x * t.y * prev_confidence(b + ivec2(1, 1));
+  bp.confidence = (1.0 - t.x) * (1.0 - t.y) * prev_confidence(b) + t.x * (1.0 - t.y) * prev_confidence(b + ivec2(1, 0)) +
+                  (1.0 - t.x) * t.y * prev_confidence(b + ivec2(0, 1)) + t.x * t.y * prev_confidence(b + ivec2(1, 1));
+  return bp;
+}
+
+// a / (a + b + c), 0 when that is not a finite number in [0, 1].
+float mis3(float a, float b, float c) {
+  float d = a + b + c;
+  if (!(d > 0.0) || isinf(d)) return 0.0;
+  return a / d;
+}
+
+void count_shift(ShiftResult r) {
+  atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
+  atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], r.rays);
+  if (r.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + r.reason], 1u);
 }
 
 void main() {
@@ -60,51 +89,123 @@ void main() {
   vec3 f_canonical = b_contribution[index].rgb;
   float c_star = canonical.confidence;
   bool moved = (u_frame.history_flags & HISTORY_SCENE_MOVED) != 0u;
-
-  // Reverse splat of the canonical sample (for Eq. 13).
-  float from_r = 0.0;
-  float c_r = 0.0;
-  if (reservoir_valid(canonical)) {
-    SplatResult back = splat_path(true, canonical.y, moved);
-    atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
-    atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], back.shift.rays);
-    if (back.shift.reason == SHIFT_OK) {
-      from_r = p_hat_from(luminance(back.shift.f), back.jacobian);
-      c_r = prev_confidence(ivec2(back.pixel));
-    } else {
-      atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + back.shift.reason], 1u);
-    }
-  }
+  bool with_backup = (u_restir.flags & RESTIR_SPLAT_BACKUP) != 0u;
+  // RS-supp 3.2: with the backup, backup-domain confidences are scaled by alpha and splat-domain
+  // ones by 1 - alpha (alpha = 0.5). The same scale applies to a domain in every weight below, so
+  // the weights of every path still sum to one.
+  float alpha = with_backup ? 0.5 : 0.0;
+  Backprojection bp = backproject_centre(pixel);
+  bool backup_domain = with_backup && bp.ok;
+  Reservoir xb = backup_domain ? unpack_reservoir(b_in[bp.backup.y * u_frame.prev_width + bp.backup.x]) : reservoir_empty();
+  float c_b = backup_domain ? alpha * confidence_capped(xb.confidence, u_restir.confidence_cap) : 0.0;
 
   Rng rng = rng_init(index, 0x5B1A7u, u_frame.frame_index, u_frame.seed);
   GrisState st = gris_begin();
-  float m_star = mis_balance2(c_star, canonical.p_hat, c_r, from_r);
-  gris_stream(st, m_star * canonical.p_hat * canonical.ucw, canonical.p_hat, c_star, 0u, rng_next_float(rng));
   Reservoir out_r = canonical;
   vec3 f = f_canonical;
   uint first = b_offsets[index];
   uint last = b_offsets[index + 1u];
-  for (uint s = first; s < last; ++s) {
-    SplatRecord rec = b_splats[b_list[s]];
-    Reservoir y = unpack_reservoir(rec.reservoir);
-    vec3 f_y = rec.f_jacobian.xyz;
-    float jacobian = rec.f_jacobian.w;
-    float p_y = luminance(f_y);
-    float from_i = y.p_hat / jacobian;                                 // p-hat_prev(X_i) |T'|^-1
-    float m_i = mis_balance2(y.confidence, from_i, c_star, p_y);      // Eq. 11
-    if (gris_stream(st, m_i * p_y * y.ucw * jacobian, p_y, 0.0, s + 1u, rng_next_float(rng))) {  // Eq. 10
-      out_r = y;
-      f = f_y;
+
+  // Every shift is a job of one loop with one shift_path call (lavapipe inlines a traversal per
+  // call site). Jobs: 0 the canonical sample reverse-splatted (Eq. 13/21), 1 the canonical sample
+  // into the backup pixel (Eq. 21), 2 the backup sample into this pixel (Y^b), 3 Y^b reverse-splatted
+  // (Eq. 22); then per splat s, Y_s into the backup pixel (Eq. 20) and its resampling.
+  float from_r = 0.0;       // p-hat_prev(T^-1 Y*) |dT^-1/dY*|
+  float c_r = 0.0;
+  float from_b_star = 0.0;  // p-hat_prev(T_b^-1 Y*) |dT_b^-1/dY*|
+  ShiftResult yb;
+  yb.reason = SHIFT_FAIL_ZERO;
+  yb.f = vec3(0.0);
+  float j_b = 0.0;
+  float from_r_b = 0.0;     // p-hat_prev(T^-1 Y^b) |dT^-1/dY^b|
+  float c_r_b = 0.0;
+  uint jobs = 4u + (last - first);
+  for (uint job = 0u; job < jobs; ++job) {
+    uint s = job >= 4u ? first + job - 4u : 0u;
+    SplatRecord rec;
+    Reservoir y_s;
+    if (job >= 4u) {
+      rec = b_splats[b_list[s]];
+      y_s = unpack_reservoir(rec.reservoir);
+    }
+    ShiftJob sj;
+    sj.ok = false;
+    PathSample base = canonical.y;
+    bool run = false;
+    if (job == 0u) {
+      run = reservoir_valid(canonical);
+      if (run) sj = splat_prepare(true, canonical.y);
+    } else if (job == 1u) {
+      run = backup_domain && reservoir_valid(canonical);
+      if (run) sj = gather_prepare(true, vec2(bp.backup), canonical.y);
+    } else if (job == 2u) {
+      run = backup_domain && reservoir_valid(xb);
+      base = xb.y;
+      if (run) sj = gather_prepare(false, vec2(pixel), xb.y);
+    } else if (job == 3u) {
+      run = j_b > 0.0;
+      base = xb.y;
+      base.x1 = yb.x1;
+      base.density = yb.density;
+      if (run) sj = splat_prepare(true, base);
+    } else {
+      run = backup_domain;
+      base = y_s.y;
+      if (run) sj = gather_prepare(true, vec2(bp.backup), y_s.y);
+    }
+    ShiftResult r;
+    r.reason = SHIFT_FAIL_ZERO;
+    float jac = 0.0;
+    if (run) {
+      r = run_shift(sj, moved);
+      jac = shift_finish(sj, base, r);
+      count_shift(r);
+    }
+    float from = jac > 0.0 ? p_hat_from(luminance(r.f), jac) : 0.0;
+    if (job == 0u) {
+      from_r = from;
+      if (jac > 0.0) c_r = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel));
+    } else if (job == 1u) {
+      from_b_star = from;
+    } else if (job == 2u) {
+      yb = r;
+      j_b = jac;
+    } else if (job == 3u) {
+      from_r_b = from;
+      if (jac > 0.0) c_r_b = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel));
+      // The canonical sample (RS-main Eq. 12-13; RS-supp Eq. 21) and the backup (RS-supp Eq. 22).
+      float m_star = mis3(c_star * canonical.p_hat, c_b * from_b_star, c_r * from_r);
+      gris_stream(st, m_star * canonical.p_hat * canonical.ucw, canonical.p_hat, c_star, 0u, rng_next_float(rng));
+      float p_yb = j_b > 0.0 ? luminance(yb.f) : 0.0;
+      float m_b = j_b > 0.0 ? mis3(c_b * xb.p_hat / j_b, c_star * p_yb, c_r_b * from_r_b) : 0.0;
+      if (gris_stream(st, m_b * p_yb * xb.ucw * j_b, p_yb, 0.0, 1u, rng_next_float(rng))) {
+        out_r = xb;
+        out_r.y.x1 = yb.x1;
+        out_r.y.density = yb.density;
+        f = yb.f;
+      }
+    } else {
+      // Splat Y_s (RS-main Eq. 10-11; RS-supp Eq. 20).
+      vec3 f_y = rec.f_jacobian.xyz;
+      float jacobian = rec.f_jacobian.w;
+      float p_y = luminance(f_y);
+      float m_s = mis3((1.0 - alpha) * y_s.confidence * y_s.p_hat / jacobian, c_star * p_y, c_b * from);
+      if (gris_stream(st, m_s * p_y * y_s.ucw * jacobian, p_y, 0.0, s + 2u, rng_next_float(rng))) {
+        out_r = y_s;
+        f = f_y;
+      }
     }
   }
   if (st.selected != 0u && st.selected != GRIS_NONE) atomicAdd(b_counters[COUNTER_TEMPORAL_SELECTED], 1u);
+  if (st.selected == 1u) atomicAdd(b_counters[COUNTER_SPLAT_BACKUP_SELECTED], 1u);
   if (last == first) atomicAdd(b_counters[COUNTER_TEMPORAL_NO_HISTORY], 1u);  // a hole: no splat landed here
   atomicAdd(b_counters[COUNTER_SPLATS_LANDED], last - first);
   atomicMax(b_counters[COUNTER_SPLATS_MAX], last - first);
   out_r.p_hat = st.selected_p_hat;
   out_r.ucw = gris_ucw(st);  // RS-main Eq. 5
-  // RS-main Eq. 17.
-  out_r.confidence = min(c_star + backprojected_confidence(pixel), u_restir.confidence_cap);
+  // RS-main Eq. 17 (with the backup, its confidence is added too).
+  float c_backup = backup_domain ? confidence_capped(xb.confidence, u_restir.confidence_cap) : 0.0;
+  out_r.confidence = min(c_star + bp.confidence + c_backup, u_restir.confidence_cap);
   if (st.selected == GRIS_NONE) {
     float c = out_r.confidence;
     out_r = reservoir_empty();

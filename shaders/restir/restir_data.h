@@ -14,6 +14,7 @@ CONST_DEF uint MIS_PAIRWISE = 1u;  // confidence-weighted pairwise MIS, O(N) shi
 // flags
 CONST_DEF uint RESTIR_UNBIASED = 1u;  // temporal MIS with the reverse shift (Lin 2022); else the DI
                                       // tutorial's confidence weights with heuristic validation
+CONST_DEF uint RESTIR_SPLAT_BACKUP = 2u;  // restir-splat-backup: also the backprojected backup sample (RS-main 4.2)
 
 struct GpuRestirConstants {
   uint initial_candidates;  // N_init paths per pixel

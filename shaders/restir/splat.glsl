@@ -74,25 +74,37 @@ bool project(GpuCamera cam, uint w, uint h, vec3 p, vec3 o, out uvec2 pixel, out
   return true;
 }
 
-// Splats sample y (of the other frame: the previous one when `prev` is false, and the reverse) into
-// the current (prev = false) or previous frame. suffix_changed: the scene moved between the frames.
-SplatResult splat_path(bool prev, PathSample y, bool suffix_changed) {
-  SplatResult r;
-  r.pixel = uvec2(0u);
-  r.jitter = vec2(0.0);
-  r.jacobian = 0.0;
-  r.shift.reason = SHIFT_FAIL_PRIMARY;
-  r.shift.f = vec3(0.0);
-  r.shift.density = 0.0;
-  r.shift.x1 = surface_none();
-  r.shift.rays = 0u;
+// A shift of either kind, prepared so that the caller runs its single shift_path call: the gather
+// shift (replay with the sample's own subpixel position in a given pixel; the backup of RS-main 4.2
+// and its inverse) or the splat (the subpixel position where the sample's primary hit projects).
+struct ShiftJob {
+  bool splat;
+  bool prev;           // target frame
+  vec2 pixel;          // target pixel (a splat sets it)
+  PathSample y;        // the sample to shift, with the subpixel position it will be replayed at
+  bool ok;             // false: failed before tracing (reason in `reason`)
+  uint reason;
+  float camera_ratio;  // splat: p_u(y_1) / p_u(x_1) |dy_1/dx_1| (RS-main Eq. 14-16); gather: 1
+};
+
+// Splat of sample y (of the other frame) into the current (prev = false) or previous frame:
+// projection, and the camera part of the Jacobian.
+ShiftJob splat_prepare(bool prev, PathSample y) {
+  ShiftJob job;
+  job.splat = true;
+  job.prev = prev;
+  job.pixel = vec2(0.0);
+  job.y = y;
+  job.ok = false;
+  job.reason = SHIFT_FAIL_PRIMARY;
+  job.camera_ratio = 0.0;
   bool ok_from;
   bool ok_to;
   SurfaceHit from = x1_in(!prev, y.x1, ok_from);  // x_1 in the sample's own frame
   SurfaceHit to = x1_in(prev, y.x1, ok_to);       // y_1 in the target frame
   if (!ok_from || !ok_to) {
-    r.shift.reason = SHIFT_FAIL_STALE;  // gone, or another LoD level
-    return r;
+    job.reason = SHIFT_FAIL_STALE;  // gone, or another LoD level
+    return job;
   }
   GpuCamera cam_from = camera_in(!prev);
   GpuCamera cam_to = camera_in(prev);
@@ -101,24 +113,68 @@ SplatResult splat_path(bool prev, PathSample y, bool suffix_changed) {
   uint w_to = prev ? u_frame.prev_width : u_frame.width;
   uint h_to = prev ? u_frame.prev_height : u_frame.height;
   vec3 o_to = lens_point(cam_to, y.lens);
-  if (!project(cam_to, w_to, h_to, to.position, o_to, r.pixel, r.jitter)) return r;  // off screen
+  uvec2 pixel;
+  vec2 jitter;
+  if (!project(cam_to, w_to, h_to, to.position, o_to, pixel, jitter)) return job;  // off screen
   float p_from = subpixel_density(cam_from, w_from, h_from, from.position, from.geo_normal, lens_point(cam_from, y.lens));
   float p_to = subpixel_density(cam_to, w_to, h_to, to.position, to.geo_normal, o_to);
   float area_ratio = from.area > 0.0 ? to.area / from.area : 0.0;  // |dy_1/dx_1|
-  PathSample moved = y;
-  moved.jitter = r.jitter;
-  r.shift = shift_path(prev, vec2(r.pixel), moved, suffix_changed);
-  // Visibility of y_1 from y_0 (RS-main 4.1.1): the camera ray through u must find x_1's triangle.
-  if (r.shift.reason == SHIFT_OK &&
-      (r.shift.x1.instance != y.x1.instance || r.shift.x1.geometry != y.x1.geometry || r.shift.x1.triangle != y.x1.triangle))
-    r.shift = shift_fail(r.shift, SHIFT_FAIL_PRIMARY);
-  if (r.shift.reason != SHIFT_OK) return r;
-  float j = shift_jacobian(y.density, r.shift.density) * (p_from > 0.0 ? p_to / p_from : 0.0) * area_ratio;
+  job.pixel = vec2(pixel);
+  job.y.jitter = jitter;
+  job.camera_ratio = p_from > 0.0 ? p_to / p_from * area_ratio : 0.0;
+  job.ok = true;
+  return job;
+}
+
+// The gather shift of y into `pixel` of the current or previous frame (subpixel position kept).
+ShiftJob gather_prepare(bool prev, vec2 pixel, PathSample y) {
+  ShiftJob job;
+  job.splat = false;
+  job.prev = prev;
+  job.pixel = pixel;
+  job.y = y;
+  job.ok = true;
+  job.reason = SHIFT_OK;
+  job.camera_ratio = 1.0;
+  return job;
+}
+
+// After shift_path: a splat's primary ray must have found x_1's triangle again (visibility of y_1
+// from y_0, RS-main 4.1.1); the Jacobian of the whole shift. Fails the result where needed.
+float shift_finish(ShiftJob job, PathSample base, INOUT(ShiftResult) r) {
+  if (r.reason == SHIFT_OK && job.splat &&
+      (r.x1.instance != base.x1.instance || r.x1.geometry != base.x1.geometry || r.x1.triangle != base.x1.triangle))
+    r = shift_fail(r, SHIFT_FAIL_PRIMARY);
+  if (r.reason != SHIFT_OK) return 0.0;
+  float j = shift_jacobian(base.density, r.density) * job.camera_ratio;
   if (!(j >= 1.0 / SHIFT_MAX_JACOBIAN && j <= SHIFT_MAX_JACOBIAN)) {
-    r.shift = shift_fail(r.shift, SHIFT_FAIL_JACOBIAN);
-    return r;
+    r = shift_fail(r, SHIFT_FAIL_JACOBIAN);
+    return 0.0;
   }
-  r.jacobian = j;
+  return j;
+}
+
+// Runs a prepared job (its shift_path call is the caller's one call site when used in a loop).
+ShiftResult run_shift(ShiftJob job, bool suffix_changed) {
+  ShiftResult r;
+  r.reason = job.reason;
+  r.f = vec3(0.0);
+  r.density = 0.0;
+  r.x1 = surface_none();
+  r.rays = 0u;
+  if (!job.ok) return r;
+  return shift_path(job.prev, job.pixel, job.y, suffix_changed);
+}
+
+// Splats sample y (of the other frame: the previous one when `prev` is false, and the reverse) into
+// the current (prev = false) or previous frame. suffix_changed: the scene moved between the frames.
+SplatResult splat_path(bool prev, PathSample y, bool suffix_changed) {
+  ShiftJob job = splat_prepare(prev, y);
+  SplatResult r;
+  r.shift = run_shift(job, suffix_changed);
+  r.pixel = uvec2(job.pixel);
+  r.jitter = job.y.jitter;
+  r.jacobian = shift_finish(job, y, r.shift);
   return r;
 }
 

@@ -134,6 +134,12 @@ std::vector<Case> cases() {
   v.push_back({.name = "splat_moving_camera", .scene = "cornell", .method = "restir-splat", .options = splat_only, .state = moving_camera});
   v.push_back({.name = "splat_forward_motion", .scene = "cornell", .method = "restir-splat", .options = splat_only, .state = forward_camera});
   v.push_back({.name = "splat_carousel", .scene = "carousel", .method = "restir-splat"});
+  // restir-splat-backup: the backup sample and the MIS of RS-supp Eq. 20-22.
+  v.push_back({.name = "splat_backup_moving_camera", .scene = "cornell", .method = "restir-splat-backup", .options = splat_only,
+               .state = moving_camera});
+  v.push_back({.name = "splat_backup_forward_motion", .scene = "cornell", .method = "restir-splat-backup", .options = splat_only,
+               .state = forward_camera});
+  v.push_back({.name = "splat_backup_carousel", .scene = "carousel", .method = "restir-splat-backup", .options = splat_only});
   return v;
 }
 
