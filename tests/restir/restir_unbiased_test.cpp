@@ -106,6 +106,15 @@ scene::FrameState forward_camera(const scene::Scene& s, uint32_t f) {
   return st;
 }
 
+// Depth of field (RS-main 4.5): cornell's camera with a 5 cm thin lens focused on the back wall,
+// moving as in moving_camera; the lens sample is kept in the reservoir and splats project through it.
+scene::FrameState dof_camera(const scene::Scene& s, uint32_t f) {
+  scene::FrameState st = moving_camera(s, f);
+  st.camera.aperture = 0.05f;
+  st.camera.focus_distance = 4.5f;
+  return st;
+}
+
 std::vector<Case> cases() {
   std::vector<Case> v;
   v.push_back({.name = "initial_only", .scene = "cornell", .options = [](render::RestirOptions& o) {
@@ -134,6 +143,7 @@ std::vector<Case> cases() {
   v.push_back({.name = "splat_moving_camera", .scene = "cornell", .method = "restir-splat", .options = splat_only, .state = moving_camera});
   v.push_back({.name = "splat_forward_motion", .scene = "cornell", .method = "restir-splat", .options = splat_only, .state = forward_camera});
   v.push_back({.name = "splat_carousel", .scene = "carousel", .method = "restir-splat"});
+  v.push_back({.name = "splat_depth_of_field", .scene = "cornell", .method = "restir-splat", .options = splat_only, .state = dof_camera});
   // restir-splat-backup: the backup sample and the MIS of RS-supp Eq. 20-22.
   v.push_back({.name = "splat_backup_moving_camera", .scene = "cornell", .method = "restir-splat-backup", .options = splat_only,
                .state = moving_camera});
