@@ -4,6 +4,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gpu/gpu_context.h"
+#include "support/test_scenes.h"
 #include "render/disocclusion.h"
 #include "scene/scene_io.h"
 
@@ -12,14 +13,7 @@ namespace {
 
 class Disocclusion : public GpuTest {};
 
-scene::Mesh unit_quad() {  // [-0.5, 0.5]^2 in z = 0, facing +z
-  scene::Primitive p;
-  p.positions = {{-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f}, {0.5f, 0.5f, 0.0f}, {-0.5f, 0.5f, 0.0f}};
-  p.normals.assign(4, glm::vec3(0, 0, 1));
-  p.uvs.assign(4, glm::vec2(0.0f));
-  p.indices = {0, 1, 2, 0, 2, 3};
-  return scene::Mesh{"quad", {p}};
-}
+scene::Mesh unit_quad() { return quad_mesh(0.5f, 0.0f, 0); }  // [-0.5, 0.5]^2 in z = 0, facing +z
 
 // A 20 m wall at z = -2 and a 1 m quad at z = 0; the camera at (0, 0, 5) looks down -z.
 scene::Scene wall_and_quad() {

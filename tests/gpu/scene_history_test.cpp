@@ -5,6 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gpu/gpu_context.h"
+#include "support/test_scenes.h"
 #include "include/frame_data.h"
 #include "render/frame_constants.h"
 #include "render/ray_probe.h"
@@ -15,14 +16,7 @@ namespace {
 
 class SceneHistory : public GpuTest {};
 
-scene::Mesh unit_quad() {  // [-0.5, 0.5]^2 in z = 0, facing +z
-  scene::Primitive p;
-  p.positions = {{-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f}, {0.5f, 0.5f, 0.0f}, {-0.5f, 0.5f, 0.0f}};
-  p.normals.assign(4, glm::vec3(0, 0, 1));
-  p.uvs.assign(4, glm::vec2(0.0f));
-  p.indices = {0, 1, 2, 0, 2, 3};
-  return scene::Mesh{"quad", {p}};
-}
+scene::Mesh unit_quad() { return quad_mesh(0.5f, 0.0f, 0); }  // [-0.5, 0.5]^2 in z = 0, facing +z
 
 // Instance 0 moves and switches LoD level between the two states; instance 1 stays at x = -3.
 scene::Scene two_quads() {
