@@ -106,12 +106,13 @@ scene::FrameState forward_camera(const scene::Scene& s, uint32_t f) {
   return st;
 }
 
-// Depth of field (RS-main 4.5): cornell's camera with a 5 cm thin lens focused on the back wall,
-// moving as in moving_camera; the lens sample is kept in the reservoir and splats project through it.
+// Depth of field (RS-main 4.5): cornell's camera with a 40 cm thin lens focused 2.5 m away (well
+// in front of the back wall, so most of the image is strongly defocused), moving as in
+// moving_camera; the lens sample is kept in the reservoir and splats project through it.
 scene::FrameState dof_camera(const scene::Scene& s, uint32_t f) {
   scene::FrameState st = moving_camera(s, f);
-  st.camera.aperture = 0.05f;
-  st.camera.focus_distance = 4.5f;
+  st.camera.aperture = 0.4f;
+  st.camera.focus_distance = 2.5f;
   return st;
 }
 
