@@ -42,5 +42,18 @@ INLINE float reprojection_jacobian(PrimaryView prev, PrimaryView cur, float area
   return j;
 }
 
+// Image-plane area per unit subpixel area of a camera whose image has w x h pixels: the factor of
+// |dw/du| that Eq. 15 leaves out because it cancels while field of view and resolution stay fixed.
+// `right` and `up` span the image plane at unit distance along the view axis (GpuCamera).
+INLINE float pixel_area(vec3 right, vec3 up, uint w, uint h) {
+  return 4.0f * length(right) * length(up) / (float(w) * float(h));
+}
+
+// The same with the pixel areas of both frames, exact under zoom and resolution changes.
+INLINE float reprojection_jacobian(PrimaryView prev, PrimaryView cur, float area_ratio, float pixel_area_prev, float pixel_area_cur) {
+  if (!(pixel_area_prev > 0.0f) || !(pixel_area_cur > 0.0f)) return 0.0f;
+  return reprojection_jacobian(prev, cur, area_ratio * pixel_area_prev / pixel_area_cur);
+}
+
 STRATA_NAMESPACE_END
 #endif

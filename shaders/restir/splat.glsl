@@ -5,16 +5,14 @@
 // visible from the lens vertex y_0 (the camera ray through u must hit x_1's triangle again), and its
 // suffix is then shifted by the hybrid shift from there (path_space.glsl).
 //
-// Jacobian (RS-main Eq. 14-16) in strata's subpixel parametrization: |du/dv| = p_u(y_1) / p_u(x_1)
-// times |dy_1/dx_1| (the ratio of x_1's triangle areas, 1 for rigid motion), where
-//   p_u(x_1) = |du/dx_1| = cos theta_N / (|x_1 - x_0|^2 cos^3 theta_V s),  s = 4 |right| |up| / (W H)
-// is the density of the primary hit in area measure per unit subpixel area (RS-main Eq. 15 with the
-// image-plane scale s kept, so that a zoom or a resolution change is exact). The whole shift's
-// Jacobian is that times the hybrid shift's density(x) / density(y).
+// Jacobian: the subpixel factor |du/dv| of RS-main Eq. 14-16 (restir/reprojection.h, with both
+// frames' pixel areas so that a zoom or a resolution change is exact) times the hybrid shift's
+// density(x) / density(y).
 #ifndef STRATA_SPLAT_GLSL
 #define STRATA_SPLAT_GLSL
 
 #include "restir/path_space.glsl"
+#include "restir/reprojection.h"
 
 struct SplatResult {
   ShiftResult shift;  // the offset path (reason, f, density, x1)
@@ -33,20 +31,6 @@ SurfaceHit x1_in(bool prev, SurfacePoint x1, out bool ok) {
   h.triangle = x1.triangle;
   h.bary = x1.bary;
   return load_hit_in(prev, h);
-}
-
-// p_u of a primary hit at `p` (render space: the lens centre at the origin) with normal `n`, seen
-// from lens point `lens_point` of camera `cam` whose image has w x h pixels.
-float subpixel_density(GpuCamera cam, uint w, uint h, vec3 p, vec3 n, vec3 lens_point) {
-  vec3 e = p - lens_point;
-  float d2 = dot(e, e);
-  if (!(d2 > 0.0)) return 0.0;
-  vec3 dir = e * inversesqrt(d2);
-  float cos_n = abs(dot(n, dir));
-  float cos_v = dot(normalize(cam.forward.xyz), dir);
-  float s = 4.0 * length(cam.right.xyz) * length(cam.up.xyz) / (float(w) * float(h));
-  if (!(cos_v > 0.0) || !(cos_n > 0.0)) return 0.0;
-  return cos_n / (d2 * cos_v * cos_v * cos_v * s);
 }
 
 // The lens vertex of a lens sample (render space); the origin for a pinhole.
@@ -84,7 +68,7 @@ struct ShiftJob {
   PathSample y;        // the sample to shift, with the subpixel position it will be replayed at
   bool ok;             // false: failed before tracing (reason in `reason`)
   uint reason;
-  float camera_ratio;  // splat: p_u(y_1) / p_u(x_1) |dy_1/dx_1| (RS-main Eq. 14-16); gather: 1
+  float camera_ratio;  // splat: |du/dv| of RS-main Eq. 14-16 (reprojection.h); gather: 1
 };
 
 // Splat of sample y (of the other frame) into the current (prev = false) or previous frame:
@@ -116,12 +100,18 @@ ShiftJob splat_prepare(bool prev, PathSample y) {
   uvec2 pixel;
   vec2 jitter;
   if (!project(cam_to, w_to, h_to, to.position, o_to, pixel, jitter)) return job;  // off screen
-  float p_from = subpixel_density(cam_from, w_from, h_from, from.position, from.geo_normal, lens_point(cam_from, y.lens));
-  float p_to = subpixel_density(cam_to, w_to, h_to, to.position, to.geo_normal, o_to);
+  // RS-main Eq. 14-16 (restir/reprojection.h); grazing views fail the shift (DESIGN.md section 6).
+  PrimaryView v_from = primary_view(from.position, from.geo_normal, lens_point(cam_from, y.lens), normalize(cam_from.forward.xyz));
+  PrimaryView v_to = primary_view(to.position, to.geo_normal, o_to, normalize(cam_to.forward.xyz));
   float area_ratio = from.area > 0.0 ? to.area / from.area : 0.0;  // |dy_1/dx_1|
+  job.camera_ratio = reprojection_jacobian(v_from, v_to, area_ratio, pixel_area(cam_from.right.xyz, cam_from.up.xyz, w_from, h_from),
+                                           pixel_area(cam_to.right.xyz, cam_to.up.xyz, w_to, h_to));
+  if (!(job.camera_ratio > 0.0)) {
+    job.reason = SHIFT_FAIL_JACOBIAN;
+    return job;
+  }
   job.pixel = vec2(pixel);
   job.y.jitter = jitter;
-  job.camera_ratio = p_from > 0.0 ? p_to / p_from * area_ratio : 0.0;
   job.ok = true;
   return job;
 }
