@@ -136,6 +136,12 @@ void dispatch_2d(VkCommandBuffer cmd, const ComputePipeline& p, const Descriptor
   vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
 }
 
+void dispatch_layers(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, uint32_t width, uint32_t height,
+                     uint32_t layers) {
+  bind(cmd, p, set, nullptr, 0);
+  vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, layers);
+}
+
 void dispatch_1d(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, uint32_t count,
                  const void* push_constants, uint32_t push_bytes) {
   bind(cmd, p, set, push_constants, push_bytes);

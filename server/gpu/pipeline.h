@@ -74,6 +74,10 @@ class DescriptorSet {
 void dispatch_2d(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, uint32_t width, uint32_t height,
                  const void* push_constants = nullptr, uint32_t push_bytes = 0);
 
+// The same with `layers` workgroups along z (gl_GlobalInvocationID.z = layer, local_size_z = 1).
+void dispatch_layers(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, uint32_t width, uint32_t height,
+                     uint32_t layers);
+
 // The same for a 1D pass with 64-wide workgroups covering `count` items.
 void dispatch_1d(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, uint32_t count,
                  const void* push_constants = nullptr, uint32_t push_bytes = 0);

@@ -5,6 +5,11 @@
 namespace strata::render {
 namespace {
 
+// With both kinds of light, NEE splits its samples evenly between them.
+float env_select_prob(bool env_nee, uint32_t emitter_count) { return !env_nee ? 0.0f : (emitter_count == 0 ? 1.0f : 0.5f); }
+
+}  // namespace
+
 // The camera in its own frame's render space (its position is the origin).
 gpu::GpuCamera make_camera(const scene::Camera& cam, uint32_t width, uint32_t height) {
   float tan_half = std::tan(0.5f * cam.yfov);
@@ -14,18 +19,31 @@ gpu::GpuCamera make_camera(const scene::Camera& cam, uint32_t width, uint32_t he
   c.right = glm::vec4(cam.orientation * glm::vec3(1, 0, 0) * (tan_half * aspect), 0);
   c.up = glm::vec4(cam.orientation * glm::vec3(0, 1, 0) * tan_half, 0);
   c.lens = glm::vec4(cam.aperture, cam.focus_distance, 0, 0);
+  c.position = glm::vec4(0.0f);
   return c;
 }
 
-// With both kinds of light, NEE splits its samples evenly between them.
-float env_select_prob(bool env_nee, uint32_t emitter_count) { return !env_nee ? 0.0f : (emitter_count == 0 ? 1.0f : 0.5f); }
-
-}  // namespace
+// The camera's motion over the frame's shutter relative to its closing camera (GpuShutter).
+gpu::GpuShutter make_shutter(const scene::FrameState& frame) {
+  const scene::Camera& close = frame.camera;
+  const scene::Camera open = frame.camera_open.value_or(close);
+  gpu::GpuShutter s{};
+  s.open_position = glm::vec4(open.position - close.position, frame.camera_open ? 1.0f : 0.0f);
+  // The rotation turning the closing orientation into the opening one, shortest path (as slerp).
+  glm::quat delta = glm::normalize(open.orientation * glm::conjugate(close.orientation));
+  if (delta.w < 0.0f) delta = -delta;
+  const glm::vec3 v(delta.x, delta.y, delta.z);
+  const float sin_half = glm::length(v);
+  s.rotation = sin_half > 1e-7f ? glm::vec4(v / sin_half, 2.0f * std::atan2(sin_half, delta.w)) : glm::vec4(0, 0, 1, 0);
+  s.open_lens = glm::vec4(open.yfov, open.aperture, open.focus_distance, close.yfov);
+  return s;
+}
 
 gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, const scene::Environment& env,
                                             const GpuScene& scene, const FrameSetup& setup) {
   gpu::GpuFrameConstants c{};
   c.camera = make_camera(frame.camera, setup.width, setup.height);
+  c.shutter = make_shutter(frame);
   c.environment = glm::vec4(env.radiance, setup.env_nee ? 1.0f : 0.0f);
   c.width = setup.width;
   c.height = setup.height;
@@ -42,6 +60,7 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   // is this frame itself, so the fields are consistent even where HISTORY_VALID is not set.
   const scene::FrameState& prev = scene.previous_frame();
   c.prev_camera = make_camera(prev.camera, setup.width, setup.height);
+  c.prev_shutter = make_shutter(prev);
   c.prev_total_emitter_power = float(scene.prev_total_emitter_power());
   c.prev_env_select_prob = env_select_prob(setup.env_nee, scene.prev_emitter_count());
   c.prev_width = setup.width;
@@ -49,7 +68,7 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   if (scene.history_valid()) {
     c.history_flags = gpu::HISTORY_VALID;
     if (scene.moved_since_previous()) c.history_flags |= gpu::HISTORY_SCENE_MOVED;
-    if (!(prev.camera == frame.camera)) c.history_flags |= gpu::HISTORY_CAMERA_MOVED;
+    if (!(prev.camera == frame.camera) || frame.camera_open) c.history_flags |= gpu::HISTORY_CAMERA_MOVED;
   }
   return c;
 }

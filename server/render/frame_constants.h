@@ -17,6 +17,11 @@ struct FrameSetup {
   bool env_nee = false;  // the environment is sampled by next-event estimation
 };
 
+// The camera at the frame's instant in its render space (at the origin), for a w x h image.
+gpu::GpuCamera make_camera(const scene::Camera& cam, uint32_t width, uint32_t height);
+// The camera's motion over the frame's shutter (frame.camera_open to frame.camera).
+gpu::GpuShutter make_shutter(const scene::FrameState& frame);
+
 // Call after GpuScene::record_update for the same frame (it uses that frame's emitter table, and
 // the previous frame's camera and light totals that the scene kept).
 gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, const scene::Environment& env,

@@ -18,8 +18,10 @@ std::vector<gpu::Binding> path_trace_bindings() {
 
 // The parts of the path tracer a frame needs, as specialization constants.
 struct Features {
-  bool thin_lens, env_nee, emitters;
-  uint32_t key() const { return uint32_t(thin_lens) | uint32_t(env_nee) << 1 | uint32_t(emitters) << 2; }
+  bool thin_lens, env_nee, emitters, motion_blur;
+  uint32_t key() const {
+    return uint32_t(thin_lens) | uint32_t(env_nee) << 1 | uint32_t(emitters) << 2 | uint32_t(motion_blur) << 3;
+  }
 };
 
 }  // namespace
@@ -29,7 +31,10 @@ struct PathTracer::Variant {
   gpu::DescriptorSet set;
   Variant(const SharedResources& s, Features f)
       : pipeline(s.ctx, "path_trace", path_trace_bindings(),
-                 std::vector<gpu::SpecConstant>{{SPEC_THIN_LENS, f.thin_lens}, {SPEC_ENV_NEE, f.env_nee}, {SPEC_EMITTERS, f.emitters}},
+                 std::vector<gpu::SpecConstant>{{SPEC_THIN_LENS, f.thin_lens},
+                                                {SPEC_ENV_NEE, f.env_nee},
+                                                {SPEC_EMITTERS, f.emitters},
+                                                {SPEC_MOTION_BLUR, f.motion_blur}},
                  sizeof(gpu::GpuDispatchConstants)),
         set(s.ctx, pipeline) {
     s.scene.bind(set, /*with_lights=*/true);
@@ -46,11 +51,14 @@ PathTracer::PathTracer(const SharedResources& shared, uint32_t width, uint32_t h
 PathTracer::~PathTracer() = default;
 
 void PathTracer::record(VkCommandBuffer cmd, gpu::PassTimer& timer, const MethodFrame& f) {
-  Features features{f.frame.camera.aperture > 0.0f, f.env_nee, shared_.scene.has_emitters()};
+  const bool blur = f.frame.camera_open.has_value();
+  const bool lens = f.frame.camera.aperture > 0.0f || (blur && f.frame.camera_open->aperture > 0.0f);
+  Features features{lens, f.env_nee, shared_.scene.has_emitters(), blur};
   auto& v = variants_[features.key()];
   if (!v) v = std::make_unique<Variant>(shared_, features);
   last_variant_ = std::to_string(shared_.scene.emitter_count()) + " emissive triangles" +
-                  (features.env_nee ? " + environment" : "") + (features.thin_lens ? ", thin lens" : ", pinhole");
+                  (features.env_nee ? " + environment" : "") + (features.thin_lens ? ", thin lens" : ", pinhole") +
+                  (features.motion_blur ? ", motion blur" : "");
   timer.begin(cmd, "path_trace");
   for (uint32_t done = 0; done < spp_; done += samples_per_dispatch_) {
     gpu::GpuDispatchConstants d{uint32_t(f.sample_base) + done, std::min(samples_per_dispatch_, spp_ - done)};

@@ -53,6 +53,8 @@ void RestirOptions::validate() const {
           "restir.initial_candidates = " + std::to_string(initial_candidates) + " is outside [1, 64]");
   require(light_candidates >= 1 && light_candidates <= 32,
           "restir.light_candidates = " + std::to_string(light_candidates) + " is outside [1, 32]");
+  require(splats_per_frame >= 1 && splats_per_frame <= 64,
+          "restir.splats_per_frame = " + std::to_string(splats_per_frame) + " is outside [1, 64]");
 }
 
 std::vector<std::string> available_methods() { return {"pt", "restir-gather", "restir-di", "restir-splat", "restir-splat-backup"}; }

@@ -38,6 +38,7 @@ struct RestirOptions {
   uint32_t initial_candidates = 1;   // N_init paths per pixel for the canonical sample
   uint32_t light_candidates = 1;     // NEE samples per path vertex (the DI tutorial uses 32 at x1)
   bool direct_lighting = false;      // ReSTIR DI: paths of one bounce (camera, x1, light)
+  uint32_t splats_per_frame = 1;     // restir-splat*: K time partitions over an open shutter (RS-main Eq. 19)
   void validate() const;
 };
 

@@ -23,6 +23,7 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s) {
   c.spatial_neighbors = o.spatial_neighbors;
   c.flags = (o.unbiased ? gpu::RESTIR_UNBIASED : 0u) | (s.method == "restir-splat-backup" ? gpu::RESTIR_SPLAT_BACKUP : 0u);
   // ReSTIR DI: camera, x1, light (one bounce).
+  c.splats_per_frame = o.splats_per_frame;
   c.max_segments = o.direct_lighting ? std::min<uint32_t>(2, s.max_depth) : s.max_depth;
   return c;
 }
@@ -125,7 +126,7 @@ void RestirGather::record(VkCommandBuffer cmd, gpu::PassTimer& timer, const Meth
   ran_temporal_ = (temporal_ || splat_) && f.history_valid;
   temporal_reason_ = !(temporal_ || splat_) ? "disabled (restir.temporal = false)" : !f.history_valid ? "no previous frame yet" : "";
   if (ran_temporal_ && splat_) {
-    splat_->record(cmd, timer, int(parity));
+    splat_->record(cmd, timer, int(parity), f.frame.camera_open ? settings_.restir.splats_per_frame : 1u);
   } else if (ran_temporal_) {
     timer.begin(cmd, "temporal");
     gpu::dispatch_2d(cmd, temporal_->pipeline, *temporal_->sets[parity], w, h);

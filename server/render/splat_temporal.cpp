@@ -24,15 +24,11 @@ struct SplatTemporal::Pass {
 
 SplatTemporal::SplatTemporal(const SharedResources& shared, uint32_t width, uint32_t height, const gpu::Buffer& restir_constants,
                              const gpu::Buffer& work, const std::array<gpu::Buffer, 2>& history, const gpu::Buffer& contribution)
-    : width_(width), height_(height) {
+    : shared_(shared), width_(width), height_(height) {
   const auto& ctx = shared.ctx;
   const size_t pixels = size_t(width) * height;
-  auto storage = [&](size_t bytes, const char* name) { return gpu::Buffer(ctx, bytes, gpu::k_storage_usage, gpu::Memory::Device, name); };
-  splats_ = storage(sizeof(gpu::SplatRecord) * pixels, "splats");
-  target_ = storage(sizeof(uint32_t) * pixels, "splat targets");
-  count_ = storage(sizeof(uint32_t) * pixels, "splat counts");
-  offsets_ = storage(sizeof(uint32_t) * (pixels + 1), "splat offsets");
-  list_ = storage(sizeof(uint32_t) * pixels, "splat list");
+  count_ = gpu::Buffer(ctx, sizeof(uint32_t) * pixels, gpu::k_storage_usage, gpu::Memory::Device, "splat counts");
+  offsets_ = gpu::Buffer(ctx, sizeof(uint32_t) * (pixels + 1), gpu::k_storage_usage, gpu::Memory::Device, "splat offsets");
 
   // The ReSTIR passes' common bindings (restir_pass.glsl) with the scene and its history.
   auto restir = [](std::vector<gpu::Binding> extra) {
@@ -66,35 +62,51 @@ SplatTemporal::SplatTemporal(const SharedResources& shared, uint32_t width, uint
       set.bind_buffer(BINDING_RESERVOIRS_OUT, work);
       set.bind_buffer(BINDING_CONTRIBUTION, contribution);
       set.bind_buffer(BINDING_RESERVOIRS_IN, previous);
-      set.bind_buffer(BINDING_SPLATS, splats_);
     }
-    auto& pj = *project_->sets[size_t(parity)];
-    pj.bind_buffer(BINDING_SPLAT_TARGET, target_);
-    pj.bind_buffer(BINDING_SPLAT_COUNT, count_);
-    auto& rs = *resample_->sets[size_t(parity)];
-    rs.bind_buffer(BINDING_SPLAT_OFFSETS, offsets_);
-    rs.bind_buffer(BINDING_SPLAT_LIST, list_);
+    project_->sets[size_t(parity)]->bind_buffer(BINDING_SPLAT_COUNT, count_);
+    resample_->sets[size_t(parity)]->bind_buffer(BINDING_SPLAT_OFFSETS, offsets_);
     auto& sc = *scan_->sets[size_t(parity)];
     sc.bind_buffer(BINDING_FRAME, shared.constants);
     sc.bind_buffer(BINDING_SPLAT_COUNT, count_);
     sc.bind_buffer(BINDING_SPLAT_OFFSETS, offsets_);
     auto& in = *insert_->sets[size_t(parity)];
     in.bind_buffer(BINDING_FRAME, shared.constants);
-    in.bind_buffer(BINDING_SPLAT_TARGET, target_);
     in.bind_buffer(BINDING_SPLAT_COUNT, count_);
     in.bind_buffer(BINDING_SPLAT_OFFSETS, offsets_);
-    in.bind_buffer(BINDING_SPLAT_LIST, list_);
+  }
+  ensure_partitions(1);
+}
+
+void SplatTemporal::ensure_partitions(uint32_t partitions) {
+  if (partitions <= partitions_) return;
+  // Records, targets and the list grow with K (multi-splatting, RS-main Eq. 19) the first time a
+  // frame's shutter needs it: a session that never opens the shutter keeps one partition.
+  partitions_ = partitions;
+  const auto& ctx = shared_.ctx;
+  const size_t records = size_t(width_) * height_ * partitions;
+  auto storage = [&](size_t bytes, const char* name) { return gpu::Buffer(ctx, bytes, gpu::k_storage_usage, gpu::Memory::Device, name); };
+  splats_ = storage(sizeof(gpu::SplatRecord) * records, "splats");
+  target_ = storage(sizeof(uint32_t) * records, "splat targets");
+  list_ = storage(sizeof(uint32_t) * records, "splat list");
+  for (size_t parity = 0; parity < 2; ++parity) {
+    for (Pass* p : {project_.get(), resample_.get()}) p->sets[parity]->bind_buffer(BINDING_SPLATS, splats_);
+    project_->sets[parity]->bind_buffer(BINDING_SPLAT_TARGET, target_);
+    resample_->sets[parity]->bind_buffer(BINDING_SPLAT_LIST, list_);
+    insert_->sets[parity]->bind_buffer(BINDING_SPLAT_TARGET, target_);
+    insert_->sets[parity]->bind_buffer(BINDING_SPLAT_LIST, list_);
   }
 }
 
 SplatTemporal::~SplatTemporal() = default;
 
-void SplatTemporal::record(VkCommandBuffer cmd, gpu::PassTimer& timer, int parity) {
+void SplatTemporal::record(VkCommandBuffer cmd, gpu::PassTimer& timer, int parity, uint32_t partitions) {
   const size_t p = size_t(parity);
+  ensure_partitions(partitions);
   timer.begin(cmd, "splat_project");
   vkCmdFillBuffer(cmd, count_.handle(), 0, VK_WHOLE_SIZE, 0);
   gpu::compute_barrier(cmd);
-  gpu::dispatch_2d(cmd, project_->pipeline, *project_->sets[p], width_, height_);
+  // One layer per time partition; the shader's splat_partitions() is the same number.
+  gpu::dispatch_layers(cmd, project_->pipeline, *project_->sets[p], width_, height_, partitions);
   gpu::compute_barrier(cmd);
   timer.end(cmd);
   timer.begin(cmd, "splat_scan");
@@ -102,7 +114,7 @@ void SplatTemporal::record(VkCommandBuffer cmd, gpu::PassTimer& timer, int parit
   gpu::compute_barrier(cmd);
   timer.end(cmd);
   timer.begin(cmd, "splat_insert");
-  gpu::dispatch_2d(cmd, insert_->pipeline, *insert_->sets[p], width_, height_);
+  gpu::dispatch_layers(cmd, insert_->pipeline, *insert_->sets[p], width_, height_, partitions);
   gpu::compute_barrier(cmd);
   timer.end(cmd);
   timer.begin(cmd, "splat_resample");

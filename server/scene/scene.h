@@ -4,6 +4,7 @@
 // with +Y up; triangles wind counter-clockwise seen from their front face; an emissive surface
 // emits from its front face only unless its material is double-sided.
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -64,6 +65,9 @@ struct Camera {
   float yfov = 0.8f;             // vertical field of view, radians
   float aperture = 0.0f;         // thin-lens radius in metres; 0 = pinhole
   float focus_distance = 1.0f;   // metres along the view direction
+  // Fraction of the frame interval the shutter is open, ending at the frame's instant (motion
+  // blur, RS-main 4.4); 0 = the frame is an instant.
+  float shutter = 0.0f;
   bool operator==(const Camera&) const = default;
 };
 
@@ -109,9 +113,12 @@ struct Animation {
 
 // Everything a frame needs that may change over time: what the renderer consumes per frame.
 struct FrameState {
-  Camera camera;
+  Camera camera;                      // at the frame's instant, where the shutter closes
   std::vector<glm::mat4> transforms;  // per instance, object to world
   std::vector<uint32_t> lods;         // per instance, level in use
+  // Where the shutter opened (scene/shutter.h): over the shutter the camera moves from it to
+  // `camera` (RS-supp 3.3.1). None: the frame is an instant (shutter closed, or nothing moved).
+  std::optional<Camera> camera_open;
   bool operator==(const FrameState&) const = default;
 };
 

@@ -23,15 +23,16 @@
 #define BINDING_CONTRIBUTION 18    // per pixel: f(Y) of the reservoir at that pixel, in its domain
 #define BINDING_DISOCCLUSION 19    // disocclusion pass: one uint per pixel out
 // Reservoir splatting's counting sort (RS-supp 3.1), restir-splat:
-#define BINDING_SPLATS 20          // per previous pixel: its reservoir splatted into this frame (SplatRecord)
-#define BINDING_SPLAT_TARGET 21    // per previous pixel: the current pixel it landed in (SPLAT_NONE: failed)
+#define BINDING_SPLATS 20          // per time partition and previous pixel: its reservoir splatted into this frame (SplatRecord)
+#define BINDING_SPLAT_TARGET 21    // per time partition and previous pixel: the current pixel it landed in (SPLAT_NONE: failed)
 #define BINDING_SPLAT_COUNT 22     // per current pixel: splats that landed there (atomic counters)
 #define BINDING_SPLAT_OFFSETS 23   // per current pixel + 1: exclusive prefix sum of the counts
-#define BINDING_SPLAT_LIST 24      // the previous pixels, grouped by the current pixel they landed in
+#define BINDING_SPLAT_LIST 24      // the splat records, grouped by the current pixel they landed in
 
 // Specialization constants of the passes (constant_id).
 #define SPEC_THIN_LENS 0
 #define SPEC_ENV_NEE 1
 #define SPEC_EMITTERS 2
+#define SPEC_MOTION_BLUR 3
 
 #endif

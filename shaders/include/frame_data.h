@@ -5,16 +5,29 @@
 
 STRATA_NAMESPACE_BEGIN
 
-// Camera in render space (its position is the origin). right/up are scaled by tan(yfov/2) and aspect.
+// Camera in render space. right/up are scaled by tan(yfov/2) and aspect. At a frame's instant the
+// camera is at the origin; over an open shutter (camera_at in restir/path_vertex.glsl) it moves.
 struct GpuCamera {
   vec4 forward;        // xyz unit view direction
   vec4 right;          // xyz = unit right * tan_half * aspect
   vec4 up;             // xyz = unit up * tan_half
   vec4 lens;           // x aperture radius, y focus distance
+  vec4 position;       // xyz lens centre (0 at the frame's instant)
+};
+
+// The camera's motion over a frame's shutter (scene/shutter.h; RS-supp 3.3.1), relative to the
+// frame's camera, where the shutter closes. At shutter time s in [0, 1) (0 = opening) the camera is
+// at (1 - s) open_position, turned by (1 - s) angle about `axis`, with the field of view and lens
+// interpolated linearly; the frame's camera is the limit s -> 1.
+struct GpuShutter {
+  vec4 open_position;  // xyz position at the opening (render space); w = 1: the camera moves (motion blur), 0: an instant
+  vec4 rotation;       // xyz unit axis, w angle (radians) turning the closing orientation into the opening one
+  vec4 open_lens;      // x yfov at the opening, y aperture there, z focus distance there, w yfov at the close
 };
 
 struct GpuFrameConstants {
   GpuCamera camera;
+  GpuShutter shutter;
   vec4 environment;          // rgb constant environment radiance, a = 1 if it is sampled by NEE
   uint width;
   uint height;
@@ -32,6 +45,7 @@ struct GpuFrameConstants {
   // its camera, and its light-selection totals so that target functions and MIS weights of
   // reverse shifts are evaluated exactly as that frame's passes evaluated them.
   GpuCamera prev_camera;
+  GpuShutter prev_shutter;
   float prev_total_emitter_power;
   float prev_env_select_prob;
   uint prev_width;
@@ -75,6 +89,6 @@ CONST_DEF uint COUNTER_COUNT = 40u;
 STRATA_NAMESPACE_END
 
 #ifdef __cplusplus
-static_assert(sizeof(strata::gpu::GpuFrameConstants) == 208);
+static_assert(sizeof(strata::gpu::GpuFrameConstants) == 336);
 #endif
 #endif

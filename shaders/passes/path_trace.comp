@@ -1,6 +1,7 @@
 #version 460
 // Pass `path_trace`: the reference unidirectional path tracer (method `pt`). Box-filtered subpixel
-// jitter, optional thin lens, next-event estimation to emitters and the environment combined with
+// jitter, optional thin lens, optional motion blur (shutter time uniform over the shutter, the camera
+// at that time: Eq. 9 of RS-main integrated by Monte Carlo), next-event estimation to emitters and the environment combined with
 // BSDF sampling by the power heuristic, Russian roulette. Adds `sample_count` samples per
 // pixel to the accumulation buffer (rgb sum, a = sample count).
 #extension GL_EXT_ray_query : require
@@ -20,11 +21,14 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(constant_id = SPEC_THIN_LENS) const bool k_thin_lens = false;
 layout(constant_id = SPEC_ENV_NEE) const bool k_env_nee = false;
 layout(constant_id = SPEC_EMITTERS) const bool k_emitters = true;
+layout(constant_id = SPEC_MOTION_BLUR) const bool k_motion_blur = false;
 
 layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
 layout(push_constant) uniform Dispatch { GpuDispatchConstants u_dispatch; };
 layout(set = 0, binding = BINDING_COUNTERS, std430) buffer Counters { uint b_counters[]; };
 layout(set = 0, binding = BINDING_ACCUM, std430) buffer Accum { vec4 b_accum[]; };
+
+#include "include/camera.glsl"
 
 const float RR_START_DEPTH = 3.0;
 const float RR_MAX_SURVIVAL = 0.95;
@@ -33,22 +37,14 @@ uint g_rays_primary = 0u;
 uint g_rays_bounce = 0u;
 uint g_rays_shadow = 0u;
 
+// The thin lens keeps the pinhole ray's point on the focus plane sharp (Pharr et al., PBRT 5.2.3).
 void camera_ray(vec2 pixel, inout Rng rng, out vec3 origin, out vec3 dir) {
-  GpuCamera cam = u_frame.camera;
   vec2 jitter = rng_next_float2(rng);  // box filter over the pixel
-  vec2 ndc = vec2((pixel.x + jitter.x) / float(u_frame.width) * 2.0 - 1.0,
-                  1.0 - (pixel.y + jitter.y) / float(u_frame.height) * 2.0);
-  vec3 d = cam.forward.xyz + ndc.x * cam.right.xyz + ndc.y * cam.up.xyz;
-  origin = vec3(0.0);
-  if (k_thin_lens && cam.lens.x > 0.0) {
-    // Thin lens: the pinhole ray's point on the focus plane stays sharp (Pharr et al., PBRT 5.2.3).
-    vec3 focus_point = d * cam.lens.y;
-    vec2 disk = sample_concentric_disk(rng_next_float2(rng)) * cam.lens.x;
-    origin = disk.x * normalize(cam.right.xyz) + disk.y * normalize(cam.up.xyz);
-    dir = normalize(focus_point - origin);
-  } else {
-    dir = normalize(d);
-  }
+  vec2 lens = k_thin_lens ? rng_next_float2(rng) : vec2(0.5);
+  GpuCamera cam = u_frame.camera;
+  if (k_motion_blur) cam = camera_at(false, rng_next_float(rng));  // uniform over the shutter
+  if (!k_thin_lens) cam.lens.x = 0.0;
+  primary_ray(cam, pixel, jitter, lens, origin, dir);
 }
 
 vec3 trace_path(vec2 pixel, inout Rng rng) {

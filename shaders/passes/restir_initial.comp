@@ -44,11 +44,12 @@ void offer(PathSample y, vec3 f, float w) {
   }
 }
 
-PathSample sample_begin(uint key, vec2 jitter, vec2 lens) {
+PathSample sample_begin(uint key, vec2 jitter, vec2 lens, float time) {
   PathSample y = reservoir_empty().y;
   y.seed = key;
   y.jitter = jitter;
   y.lens = lens;
+  y.time = time;
   y.flags = SAMPLE_VALID;
   return y;
 }
@@ -58,10 +59,13 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
   vec2 jitter = vec2(rng_dim(key, DIM_JITTER), rng_dim(key, DIM_JITTER + 1u));
   // The lens sample is stored as unorm16, so it is drawn on that grid (restir/reservoir.h).
   vec2 lens = unpackUnorm2x16(packUnorm2x16(vec2(rng_dim(key, DIM_LENS), rng_dim(key, DIM_LENS + 1u))));
+  // Shutter time (RS-main 4.4), always part of the sample so that shifts between frames with and
+  // without motion blur stay bijections; the camera depends on it only over an open shutter.
+  float time = rng_dim(key, DIM_TIME);
   vec3 origin;
   vec3 dir;
-  primary_ray(u_frame.camera, vec2(pixel), jitter, lens, origin, dir);
-  PathSample y = sample_begin(key, jitter, lens);
+  primary_ray(camera_at(false, time), vec2(pixel), jitter, lens, origin, dir);
+  PathSample y = sample_begin(key, jitter, lens, time);
   RayHit h;
   g_rays++;
   if (!trace_closest(origin, dir, 1e30, h)) {

@@ -1,7 +1,8 @@
 #version 460
 // Pass `splat_insert` (restir-splat; RS-supp 3.1 step 3, global insertion): every splat that
 // landed is written into its current pixel's range of the list, offsets[j] .. offsets[j+1]. The
-// counts are consumed as the slot allocator (they end at 0).
+// counts are consumed as the slot allocator (they end at 0). A thread per splat record: previous
+// pixel i and time partition n (gl_GlobalInvocationID.z); the list holds record indices.
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
@@ -19,9 +20,9 @@ layout(set = 0, binding = BINDING_SPLAT_LIST, std430) writeonly buffer List { ui
 void main() {
   uvec2 prev_pixel = gl_GlobalInvocationID.xy;
   if (prev_pixel.x >= u_frame.prev_width || prev_pixel.y >= u_frame.prev_height) return;
-  uint i = prev_pixel.y * u_frame.prev_width + prev_pixel.x;
-  uint j = b_target[i];
+  uint record = gl_GlobalInvocationID.z * u_frame.prev_width * u_frame.prev_height + prev_pixel.y * u_frame.prev_width + prev_pixel.x;
+  uint j = b_target[record];
   if (j == SPLAT_NONE) return;
   uint slot = b_offsets[j] + atomicAdd(b_count[j], 0xFFFFFFFFu) - 1u;  // count - 1 .. 0
-  b_list[slot] = i;
+  b_list[slot] = record;
 }

@@ -3,7 +3,9 @@
 // shifts computed here): every previous pixel i's reservoir X_i is splatted forward into the current
 // frame (RS-main 4.1.1: primary hit kept in object space, projected through the new camera, visible
 // from the new lens vertex, suffix by the hybrid shift), and counted in the current pixel it lands
-// in. The record keeps what the resampling weights of RS-main Eq. 10-11 need.
+// in. The record keeps what the resampling weights of RS-main Eq. 10-11 need. Over an open shutter
+// (motion blur) a thread per previous pixel and time time_partition n (gl_GlobalInvocationID.z) splats
+// into time_partition n (multi-splatting, RS-main Eq. 19); records and targets are per (n, i).
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
 
@@ -22,13 +24,15 @@ layout(set = 0, binding = BINDING_SPLAT_COUNT, std430) buffer Counts { uint b_co
 
 void main() {
   uvec2 prev_pixel = gl_GlobalInvocationID.xy;
-  if (prev_pixel.x >= u_frame.prev_width || prev_pixel.y >= u_frame.prev_height) return;
+  uint time_partition = gl_GlobalInvocationID.z;
+  if (prev_pixel.x >= u_frame.prev_width || prev_pixel.y >= u_frame.prev_height || time_partition >= splat_partitions()) return;
   uint i = prev_pixel.y * u_frame.prev_width + prev_pixel.x;
-  b_target[i] = SPLAT_NONE;
+  uint record = time_partition * u_frame.prev_width * u_frame.prev_height + i;
+  b_target[record] = SPLAT_NONE;
   Reservoir x = unpack_reservoir(b_in[i]);
   if (!reservoir_valid(x)) return;
   bool moved = (u_frame.history_flags & HISTORY_SCENE_MOVED) != 0u;
-  SplatResult s = splat_path(false, x.y, moved);
+  SplatResult s = splat_path(false, x.y, time_partition, moved);
   atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
   atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], s.shift.rays);
   if (s.shift.reason != SHIFT_OK) {
@@ -38,13 +42,14 @@ void main() {
   Reservoir y = x;  // W, confidence and p-hat_prev of X_i; the sample becomes Y_i
   y.y.x1 = s.shift.x1;
   y.y.jitter = s.jitter;
+  y.y.time = s.time;
   y.y.density = s.shift.density;
   y.confidence = confidence_capped(x.confidence, u_restir.confidence_cap);  // RS-main 3.4
   SplatRecord rec;
   rec.reservoir = pack_reservoir(y);
   rec.f_jacobian = vec4(s.shift.f, s.jacobian);
-  b_splats[i] = rec;
+  b_splats[record] = rec;
   uint j = s.pixel.y * u_frame.width + s.pixel.x;
-  b_target[i] = j;
+  b_target[record] = j;
   atomicAdd(b_count[j], 1u);
 }

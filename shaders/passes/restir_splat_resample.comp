@@ -134,7 +134,7 @@ void main() {
     bool run = false;
     if (job == 0u) {
       run = reservoir_valid(canonical);
-      if (run) sj = splat_prepare(true, canonical.y);
+      if (run) sj = splat_prepare(true, canonical.y, 0u);
     } else if (job == 1u) {
       run = backup_domain && reservoir_valid(canonical);
       if (run) sj = gather_prepare(true, vec2(bp.backup), canonical.y);
@@ -147,7 +147,7 @@ void main() {
       base = xb.y;
       base.x1 = yb.x1;
       base.density = yb.density;
-      if (run) sj = splat_prepare(true, base);
+      if (run) sj = splat_prepare(true, base, 0u);
     } else {
       run = backup_domain;
       base = y_s.y;

@@ -74,7 +74,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed)
   uint last_traced = k >= 2u ? k - 2u : n - 1u;
   vec3 origin;
   vec3 dir;
-  primary_ray(camera_in(prev), pixel, y.jitter, y.lens, origin, dir);
+  primary_ray(camera_at(prev, y.time), pixel, y.jitter, y.lens, origin, dir);
   vec3 f_prefix = vec3(1.0);
   float density = 1.0;
   float pdf = 0.0;

@@ -11,10 +11,12 @@
 #include "sampling/mis.h"
 #include "sampling/ray_offset.h"
 #include "sampling/warp.h"
+#include "include/camera.glsl"
 
 // Random-number dimensions of a path (rng_dim): the camera, then a block per vertex x_i.
 const uint DIM_JITTER = 0u;  // 2 dimensions
 const uint DIM_LENS = 2u;    // 2 dimensions
+const uint DIM_TIME = 4u;    // shutter time (RS-main 4.4)
 const uint DIM_BSDF = 0u;    // within a vertex block: 3 dimensions
 const uint DIM_RR = 3u;      // Russian roulette
 const uint DIM_NEE = 4u;     // 3 dimensions per light candidate
@@ -112,27 +114,6 @@ bool rule_intermediate(Vertex before, Vertex v, float edge, float camera_distanc
 
 bool rule_end(Vertex before, bool escaped, float edge, float camera_distance, float cos_end) {
   return before.rough && (escaped || (edge >= RECONNECT_MIN_EDGE_RELATIVE * camera_distance && cos_end >= SHIFT_MIN_COS));
-}
-
-// Camera ray through the subpixel position pixel + jitter of the frame's camera (box filter), with
-// the thin lens when the camera has an aperture; in render space (camera at the origin).
-void primary_ray(GpuCamera cam, vec2 pixel, vec2 jitter, vec2 lens, out vec3 origin, out vec3 dir) {
-  vec2 ndc = vec2((pixel.x + jitter.x) / float(u_frame.width) * 2.0 - 1.0, 1.0 - (pixel.y + jitter.y) / float(u_frame.height) * 2.0);
-  vec3 d = cam.forward.xyz + ndc.x * cam.right.xyz + ndc.y * cam.up.xyz;
-  origin = vec3(0.0);
-  if (cam.lens.x > 0.0) {
-    vec3 focus_point = d * cam.lens.y;
-    vec2 disk = sample_concentric_disk(lens) * cam.lens.x;
-    origin = disk.x * normalize(cam.right.xyz) + disk.y * normalize(cam.up.xyz);
-    dir = normalize(focus_point - origin);
-  } else {
-    dir = normalize(d);
-  }
-}
-
-GpuCamera camera_in(bool prev) {
-  if (prev) return u_frame.prev_camera;  // (if, not ?: — see instance_in in scene_bridge.glsl)
-  return u_frame.camera;
 }
 
 #endif

@@ -6,7 +6,8 @@
 // as is the reconnection vertex x_k, with the direction leaving x_k and the radiance arriving
 // along it so that the BSDF at x_k can be re-evaluated for a new predecessor (reconnection shift).
 // Positions are never stored in fp16: barycentrics are f32; radiance is f32 because emitters may
-// exceed fp16's 65504 (the `stiff` scene has 1e6); the confidence weight and time are 16-bit.
+// exceed fp16's 65504 (the `stiff` scene has 1e6); the confidence weight is 16-bit; the shutter time
+// is f32, as it is replayed exactly.
 //
 // Shift bookkeeping (Lin et al. 2022 hybrid shift, as strata defines it in restir/path_space.glsl):
 // the subpixel jitter and lens sample are replayed exactly (identity shift in those dimensions);
@@ -71,8 +72,8 @@ struct PackedReservoir {
   uvec4 x1;          // instance|geometry, triangle, bary.x, bary.y
   uvec4 xk;          // instance|geometry, triangle, bary.x, bary.y
   uvec4 radiance;    // xk_radiance rgb (f32), packed xk_direction (octahedral snorm16x2)
-  uvec4 weights;     // ucw (f32), p_hat (f32), seed, half2(confidence, time)
-  uvec4 meta;        // k | length << 8 | flags << 16 | lod1 << 24 | lodk << 28, lens (unorm16x2), 0, 0
+  uvec4 weights;     // ucw (f32), p_hat (f32), seed, half2(confidence, 0)
+  uvec4 meta;        // k | length << 8 | flags << 16 | lod1 << 24 | lodk << 28, lens (unorm16x2), time (f32), 0
   uvec4 shift;       // jitter.x, jitter.y, density, light_pdf_end (f32)
 };
 
@@ -130,10 +131,10 @@ INLINE PackedReservoir pack_reservoir(Reservoir r) {
   p.xk = pack_surface(r.y.xk);
   p.radiance = uvec4(floatBitsToUint(r.y.xk_radiance.x), floatBitsToUint(r.y.xk_radiance.y),
                      floatBitsToUint(r.y.xk_radiance.z), packSnorm2x16(octahedral_encode(r.y.xk_direction)));
-  p.weights = uvec4(floatBitsToUint(r.ucw), floatBitsToUint(r.p_hat), r.y.seed, packHalf2x16(vec2(r.confidence, r.y.time)));
+  p.weights = uvec4(floatBitsToUint(r.ucw), floatBitsToUint(r.p_hat), r.y.seed, packHalf2x16(vec2(r.confidence, 0.0f)));
   uint meta = (r.y.k & 0xFFu) | ((r.y.segments & 0xFFu) << 8u) | ((r.y.flags & 0xFFu) << 16u) | ((r.y.x1.lod & 0xFu) << 24u) |
               ((r.y.xk.lod & 0xFu) << 28u);
-  p.meta = uvec4(meta, packUnorm2x16(r.y.lens), 0u, 0u);
+  p.meta = uvec4(meta, packUnorm2x16(r.y.lens), floatBitsToUint(r.y.time), 0u);
   p.shift = uvec4(floatBitsToUint(r.y.jitter.x), floatBitsToUint(r.y.jitter.y), floatBitsToUint(r.y.density),
                   floatBitsToUint(r.y.light_pdf_end));
   return p;
@@ -149,9 +150,8 @@ INLINE Reservoir unpack_reservoir(PackedReservoir p) {
   r.ucw = uintBitsToFloat(p.weights.x);
   r.p_hat = uintBitsToFloat(p.weights.y);
   r.y.seed = p.weights.z;
-  vec2 ct = unpackHalf2x16(p.weights.w);
-  r.confidence = ct.x;
-  r.y.time = ct.y;
+  r.confidence = unpackHalf2x16(p.weights.w).x;
+  r.y.time = uintBitsToFloat(p.meta.z);
   r.y.k = meta & 0xFFu;
   r.y.segments = (meta >> 8u) & 0xFFu;
   r.y.flags = (meta >> 16u) & 0xFFu;

@@ -26,7 +26,7 @@ struct GpuRestirConstants {
   uint spatial_neighbors;
   uint flags;               // RESTIR_*
   uint max_segments;        // path length limit (1 bounce for ReSTIR DI: 2 segments)
-  uint pad0;
+  uint splats_per_frame;    // K of multi-splatting over an open shutter (RS-main Eq. 19)
   uint pad1;
   uint pad2;
 };

@@ -5,9 +5,15 @@
 // visible from the lens vertex y_0 (the camera ray through u must hit x_1's triangle again), and its
 // suffix is then shifted by the hybrid shift from there (path_space.glsl).
 //
+// Motion blur (RS-main 4.4): the camera is the one at the sample's shutter time in each frame
+// (camera_at). Over an open shutter the current frame's shutter is split into K partitions and every
+// previous sample splats once into each, at t(n) = (n + t_prev) / K (RS-main Eq. 19; K = 1 is Eq. 18,
+// the time offset kept); the reverse splat of a current sample finds its time_partition n = floor(t K).
+//
 // Jacobian: the subpixel factor |du/dv| of RS-main Eq. 14-16 (restir/reprojection.h, with both
 // frames' pixel areas so that a zoom or a resolution change is exact) times the hybrid shift's
-// density(x) / density(y).
+// density(x) / density(y), times the time factor 1/K (|T_n-hat| = |T_n| / K, RS-main 4.4.3; K for
+// the reverse splat).
 #ifndef STRATA_SPLAT_GLSL
 #define STRATA_SPLAT_GLSL
 
@@ -18,6 +24,7 @@ struct SplatResult {
   ShiftResult shift;  // the offset path (reason, f, density, x1)
   uvec2 pixel;        // where it landed
   vec2 jitter;        // its subpixel position there
+  float time;         // its shutter time there
   float jacobian;     // |T'(x)| of the whole shift (0 when it failed)
 };
 
@@ -33,22 +40,23 @@ SurfaceHit x1_in(bool prev, SurfacePoint x1, out bool ok) {
   return load_hit_in(prev, h);
 }
 
-// The lens vertex of a lens sample (render space); the origin for a pinhole.
+// The lens vertex of a lens sample (render space); the camera position for a pinhole.
 vec3 lens_point(GpuCamera cam, vec2 lens) {
-  if (!(cam.lens.x > 0.0)) return vec3(0.0);
+  if (!(cam.lens.x > 0.0)) return cam.position.xyz;
   vec2 disk = sample_concentric_disk(lens) * cam.lens.x;
-  return disk.x * normalize(cam.right.xyz) + disk.y * normalize(cam.up.xyz);
+  return cam.position.xyz + disk.x * normalize(cam.right.xyz) + disk.y * normalize(cam.up.xyz);
 }
 
 // Projects p through the thin lens from lens point o to the image (pixel + subpixel); false when it
-// falls outside. For a pinhole (o = 0) this is the perspective projection.
+// falls outside. For a pinhole (o = the camera position) this is the perspective projection.
 bool project(GpuCamera cam, uint w, uint h, vec3 p, vec3 o, out uvec2 pixel, out vec2 jitter) {
   vec3 fwd = cam.forward.xyz;
   vec3 e = p - o;
   float along = dot(fwd, e);
   if (!(along > 0.0)) return false;
   float focus = cam.lens.x > 0.0 ? cam.lens.y : 1.0;
-  vec3 d = (o + e * ((focus - dot(fwd, o)) / along)) / focus;  // on the plane forward . d = 1
+  vec3 c = cam.position.xyz;
+  vec3 d = (o - c + e * ((focus - dot(fwd, o - c)) / along)) / focus;  // relative to c, on the plane forward . d = 1
   float x = dot(d, cam.right.xyz) / dot(cam.right.xyz, cam.right.xyz);
   float y = dot(d, cam.up.xyz) / dot(cam.up.xyz, cam.up.xyz);
   vec2 s = vec2((x + 1.0) * 0.5 * float(w), (1.0 - y) * 0.5 * float(h));
@@ -69,11 +77,16 @@ struct ShiftJob {
   bool ok;             // false: failed before tracing (reason in `reason`)
   uint reason;
   float camera_ratio;  // splat: |du/dv| of RS-main Eq. 14-16 (reprojection.h); gather: 1
+  float time_ratio;    // splat: 1/K forward, K reverse (RS-main 4.4.3); gather: 1 (time kept)
 };
 
+// K: the time partitions of this frame's shutter (1 when the camera does not move over it).
+uint splat_partitions() { return motion_blur_in(false) ? max(u_restir.splats_per_frame, 1u) : 1u; }
+
 // Splat of sample y (of the other frame) into the current (prev = false) or previous frame:
-// projection, and the camera part of the Jacobian.
-ShiftJob splat_prepare(bool prev, PathSample y) {
+// projection, and the camera part of the Jacobian. Forward, `time_partition` is the time time_partition n
+// it splats into (RS-main Eq. 19); the reverse splat ignores it (the sample's time decides).
+ShiftJob splat_prepare(bool prev, PathSample y, uint time_partition) {
   ShiftJob job;
   job.splat = true;
   job.prev = prev;
@@ -82,6 +95,16 @@ ShiftJob splat_prepare(bool prev, PathSample y) {
   job.ok = false;
   job.reason = SHIFT_FAIL_PRIMARY;
   job.camera_ratio = 0.0;
+  float k = float(splat_partitions());
+  float time_to;
+  if (!prev) {
+    time_to = (float(time_partition) + y.time) / k;  // RS-main Eq. 19
+    job.time_ratio = 1.0 / k;
+  } else {
+    float tk = y.time * k;
+    time_to = clamp(tk - min(floor(tk), k - 1.0), 0.0, 0.99999994);  // the inverse of Eq. 19
+    job.time_ratio = k;
+  }
   bool ok_from;
   bool ok_to;
   SurfaceHit from = x1_in(!prev, y.x1, ok_from);  // x_1 in the sample's own frame
@@ -90,8 +113,8 @@ ShiftJob splat_prepare(bool prev, PathSample y) {
     job.reason = SHIFT_FAIL_STALE;  // gone, or another LoD level
     return job;
   }
-  GpuCamera cam_from = camera_in(!prev);
-  GpuCamera cam_to = camera_in(prev);
+  GpuCamera cam_from = camera_at(!prev, y.time);
+  GpuCamera cam_to = camera_at(prev, time_to);
   uint w_from = prev ? u_frame.width : u_frame.prev_width;
   uint h_from = prev ? u_frame.height : u_frame.prev_height;
   uint w_to = prev ? u_frame.prev_width : u_frame.width;
@@ -112,6 +135,7 @@ ShiftJob splat_prepare(bool prev, PathSample y) {
   }
   job.pixel = vec2(pixel);
   job.y.jitter = jitter;
+  job.y.time = time_to;
   job.ok = true;
   return job;
 }
@@ -126,6 +150,7 @@ ShiftJob gather_prepare(bool prev, vec2 pixel, PathSample y) {
   job.ok = true;
   job.reason = SHIFT_OK;
   job.camera_ratio = 1.0;
+  job.time_ratio = 1.0;
   return job;
 }
 
@@ -141,7 +166,7 @@ float shift_finish(ShiftJob job, PathSample base, INOUT(ShiftResult) r) {
     r = shift_fail(r, SHIFT_FAIL_JACOBIAN);
     return 0.0;
   }
-  return j;
+  return j * job.time_ratio;  // exact, outside the range check
 }
 
 // Runs a prepared job (its shift_path call is the caller's one call site when used in a loop).
@@ -158,12 +183,13 @@ ShiftResult run_shift(ShiftJob job, bool suffix_changed) {
 
 // Splats sample y (of the other frame: the previous one when `prev` is false, and the reverse) into
 // the current (prev = false) or previous frame. suffix_changed: the scene moved between the frames.
-SplatResult splat_path(bool prev, PathSample y, bool suffix_changed) {
-  ShiftJob job = splat_prepare(prev, y);
+SplatResult splat_path(bool prev, PathSample y, uint time_partition, bool suffix_changed) {
+  ShiftJob job = splat_prepare(prev, y, time_partition);
   SplatResult r;
   r.shift = run_shift(job, suffix_changed);
   r.pixel = uvec2(job.pixel);
   r.jitter = job.y.jitter;
+  r.time = job.y.time;
   r.jacobian = shift_finish(job, y, r.shift);
   return r;
 }

@@ -12,6 +12,7 @@
 #include "gpu/gpu_context.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"
+#include "scene/shutter.h"
 #include "support/unbiasedness.h"
 
 namespace strata::test {
@@ -116,6 +117,25 @@ scene::FrameState dof_camera(const scene::Scene& s, uint32_t f) {
   return st;
 }
 
+// Motion blur (RS-main 4.4): cornell's camera turning 4 degrees, sliding 8 cm and zooming in per
+// frame, with the shutter open for 3/4 of the frame interval: the reference path-traces each frame
+// over the same shutter (time uniform, camera interpolated as GpuShutter says).
+scene::Camera blur_camera_at(const scene::Scene& s, float f) {
+  scene::Camera c = s.frame_state(0).camera;
+  c.position += glm::vec3(0.08f * f, 0.0f, -0.03f * f);
+  c.orientation = glm::angleAxis(glm::radians(4.0f) * f, glm::vec3(0, 1, 0)) * c.orientation;
+  c.yfov -= 0.02f * f;
+  c.shutter = 0.75f;
+  return c;
+}
+
+scene::FrameState blur_camera(const scene::Scene& s, uint32_t f) {
+  scene::FrameState st = s.frame_state(0);
+  st.camera = blur_camera_at(s, float(f));
+  st.camera_open = scene::shutter_open_camera(blur_camera_at(s, float(f) - 1.0f), st.camera);
+  return st;
+}
+
 std::vector<Case> cases() {
   std::vector<Case> v;
   v.push_back({.name = "initial_only", .scene = "cornell", .options = [](render::RestirOptions& o) {
@@ -151,6 +171,22 @@ std::vector<Case> cases() {
   v.push_back({.name = "splat_backup_forward_motion", .scene = "cornell", .method = "restir-splat-backup", .options = splat_only,
                .state = forward_camera});
   v.push_back({.name = "splat_backup_carousel", .scene = "carousel", .method = "restir-splat-backup", .options = splat_only});
+  // Motion blur: the naive backprojected extension (restir-gather, RS-main 4.4.1), splatting with
+  // the time offset kept (Eq. 18) and multi-splatting into K partitions (Eq. 19), with the backup.
+  v.push_back({.name = "gather_motion_blur", .scene = "cornell", .state = blur_camera});
+  v.push_back({.name = "splat_motion_blur", .scene = "cornell", .method = "restir-splat", .options = splat_only, .state = blur_camera});
+  v.push_back({.name = "splat_multi_motion_blur", .scene = "cornell", .method = "restir-splat",
+               .options = [](render::RestirOptions& o) {
+                 o.spatial = false;
+                 o.splats_per_frame = 3;
+               },
+               .state = blur_camera});
+  v.push_back({.name = "splat_backup_multi_motion_blur", .scene = "cornell", .method = "restir-splat-backup",
+               .options = [](render::RestirOptions& o) {
+                 o.spatial = false;
+                 o.splats_per_frame = 2;
+               },
+               .state = blur_camera});
   return v;
 }
 
