@@ -126,7 +126,8 @@ void RestirGather::record(VkCommandBuffer cmd, gpu::PassTimer& timer, const Meth
   ran_temporal_ = (temporal_ || splat_) && f.history_valid;
   temporal_reason_ = !(temporal_ || splat_) ? "disabled (restir.temporal = false)" : !f.history_valid ? "no previous frame yet" : "";
   if (ran_temporal_ && splat_) {
-    splat_->record(cmd, timer, int(parity), f.frame.camera_open ? settings_.restir.splats_per_frame : 1u);
+    partitions_ = f.frame.camera_open ? settings_.restir.splats_per_frame : 1u;  // K (RS-main Eq. 19)
+    splat_->record(cmd, timer, int(parity), partitions_);
   } else if (ran_temporal_) {
     timer.begin(cmd, "temporal");
     gpu::dispatch_2d(cmd, temporal_->pipeline, *temporal_->sets[parity], w, h);
@@ -161,7 +162,8 @@ std::vector<PassDecision> RestirGather::decisions() const {
           {"temporal", ran_temporal_,
            !ran_temporal_ ? temporal_reason_
            : splat_       ? std::string(settings_.method == "restir-splat-backup" ? "splat with backup sample" : "splat") +
-                                " (counting sort; reprojection + " + o.shift + " shift, reverse-splat MIS, bilinear confidence)"
+                                " (counting sort; reprojection + " + o.shift + " shift, reverse-splat MIS, bilinear confidence" +
+                                (partitions_ > 1 ? "; " + std::to_string(partitions_) + " time partitions over the shutter)" : ")")
                           : "gather, " + o.shift + " shift, " + (o.unbiased ? "reverse-shift MIS" : "confidence weights (biased)")},
           {"spatial", bool(spatial_), spatial_ ? std::to_string(o.spatial_neighbors) + " neighbour(s), " + o.mis + " MIS"
                                                : "disabled (restir.spatial = false)"},
@@ -193,6 +195,7 @@ void RestirGather::collect(std::span<const uint32_t> c, FrameStats& s) const {
     // fullest pixel, and holes (pixels no splat reached: temporal.no_history).
     s.reuse["splat.landed"] = c[COUNTER_SPLATS_LANDED];
     s.reuse["splat.max_per_pixel"] = c[COUNTER_SPLATS_MAX];
+    s.reuse["splat.partitions"] = ran_temporal_ ? partitions_ : 0;  // K time partitions of this frame's shutter
     s.reuse["splat.holes"] = c[COUNTER_TEMPORAL_NO_HISTORY];
     s.reuse["splat.visibility_failed"] = c[COUNTER_TEMPORAL_FAIL + SHIFT_FAIL_PRIMARY];
     if (settings_.method == "restir-splat-backup") s.reuse["splat.backup_selected"] = c[COUNTER_SPLAT_BACKUP_SELECTED];

@@ -32,6 +32,7 @@ class RestirGather : public Method {
   std::unique_ptr<Pass> initial_, temporal_, spatial_, shade_;
   std::unique_ptr<SplatTemporal> splat_;  // restir-splat: replaces temporal_
   bool ran_temporal_ = false;
+  uint32_t partitions_ = 1;  // restir-splat*: K of the last frame
   std::string temporal_reason_;
 };
 
