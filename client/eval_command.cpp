@@ -1,9 +1,10 @@
 // `strata eval` (issue 6): error against run time. For each scene, gets the converged reference of
-// every frame of its default animation from stratad (RenderReference, cached by the server), plays
-// the animation with each method, scores every frame against its reference (RelMSE, MAPE,
-// HDR-FLIP; also over the disoccluded pixels when the reference has them), and writes
-// results.csv, results.json and a self-contained report.html. With --equal-time, pt then gets as
-// many samples per frame as fit in each other method's median frame time.
+// every frame of its default animation, or of a camera path (eval_frames.h), from stratad
+// (RenderReference, cached by the server), plays the frames with each method, scores every frame
+// against its reference (RelMSE, MAPE, HDR-FLIP; also over the disoccluded pixels when the
+// reference has them), and writes results.csv, results.json and a self-contained report.html.
+// With --equal-time, pt then gets as many samples per frame as fit in each other method's median
+// frame time.
 #include <chrono>
 #include <ctime>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "eval_frames.h"
 #include "eval_runner.h"
 #include "eval_scoring.h"
 #include "progress.h"
@@ -29,6 +31,8 @@ using Clock = std::chrono::steady_clock;
 struct EvalArgs : EvalSettings {
   std::string scene_list = "cornell", method_list = "pt,restir-gather";
   float exposure = 0.0f;  // PNG insets
+  float shutter_value = 0.0f;     // --shutter, when given
+  uint32_t splats_value = 1;      // --splats-per-frame, when given
 };
 
 std::vector<std::string> split(const std::string& list) {
@@ -51,10 +55,14 @@ std::string utc_now() {
 // The command line that reproduces this evaluation (every setting explicit).
 std::string command_line(const EvalArgs& a) {
   std::ostringstream s;
-  s << "strata eval --server " << a.server << " --scenes " << a.scene_list << " --methods " << a.method_list << " --frames "
-    << a.frames << " --width " << a.width << " --height " << a.height << " --reference-spp " << a.reference_spp
-    << " --reference-error " << a.reference_error << " --seed " << a.seed;
+  s << "strata eval --server " << a.server << " --scenes " << a.scene_list << " --methods " << a.method_list;
+  if (a.camera_path.empty()) s << " --frames " << a.frames;
+  else s << " --camera-path " << a.camera_path;
+  s << " --width " << a.width << " --height " << a.height << " --reference-spp " << a.reference_spp << " --reference-error "
+    << a.reference_error << " --seed " << a.seed;
   if (a.max_depth) s << " --max-depth " << a.max_depth;
+  if (a.shutter) s << " --shutter " << *a.shutter;
+  if (a.splats_per_frame) s << " --splats-per-frame " << *a.splats_per_frame;
   if (a.equal_time) s << " --equal-time";
   s << " --out " << a.out;
   return s.str();
@@ -183,9 +191,10 @@ void print_summary(const report::Report& rep) {
               << "  flip " << et.ratio.flip << "\n";
 }
 
-int run_eval(EvalArgs& a) {
+int run_eval(EvalArgs& a, bool frames_given) {
   a.scenes = split(a.scene_list);
   a.methods = split(a.method_list);
+  prepare_eval_frames(a, frames_given);
   const auto start = Clock::now();
   EvalClient client(a.server, a.timeout_s);
   client.check(a);  // unknown scenes and methods, limits: before any work
@@ -204,6 +213,9 @@ int run_eval(EvalArgs& a) {
               {"reference_spp", a.reference_spp},
               {"reference_error", a.reference_error},
               {"equal_time", a.equal_time},
+              {"camera_path", a.camera_path.empty() ? nlohmann::json() : nlohmann::json(a.camera_path)},
+              {"shutter", a.shutter ? nlohmann::json(*a.shutter) : nlohmann::json()},
+              {"splats_per_frame", a.splats_per_frame ? nlohmann::json(*a.splats_per_frame) : nlohmann::json()},
               {"command_line", command_line(a)}};
   uint64_t non_pt = 0;
   for (const auto& m : a.methods) non_pt += m != "pt";
@@ -236,7 +248,18 @@ Runner add_eval_command(CLI::App& app) {
   cmd->add_option("--scenes", a->scene_list, "scenes, comma-separated (the server's ListScenes)")->capture_default_str();
   cmd->add_option("--methods", a->method_list, "methods, comma-separated (the server's status lists those available)")
       ->capture_default_str();
-  cmd->add_option("--frames", a->frames, "frames of each scene's default animation")->capture_default_str();
+  auto* frames = cmd->add_option("--frames", a->frames, "frames of each scene's default animation (not with --camera-path)")
+                     ->capture_default_str();
+  cmd->add_option("--camera-path", a->camera_path,
+                  "JSON {\"frames\": [FrameInput, ...]} as for strata stream, replacing the default animation: each entry sets "
+                  "animation_frame and may set camera, transforms and lod_changes; its entries are the frames (--frames "
+                  "must not be given)");
+  auto* shutter = cmd->add_option("--shutter", a->shutter_value,
+                                  "camera.shutter of every frame, 0..1 (motion blur); > 0 needs --camera-path whose entries "
+                                  "all set camera");
+  auto* splats = cmd->add_option("--splats-per-frame", a->splats_value,
+                                 "RenderOptions.splats_per_frame of the methods' sessions, 1..64 (restir-splat*: K splats "
+                                 "over the shutter; default: the server's)");
   cmd->add_option("--width", a->width, "image width")->capture_default_str();
   cmd->add_option("--height", a->height, "image height")->capture_default_str();
   cmd->add_option("--reference-spp", a->reference_spp, "samples per pixel of each reference")->capture_default_str();
@@ -249,7 +272,11 @@ Runner add_eval_command(CLI::App& app) {
   cmd->add_option("--exposure", a->exposure, "exposure of the PNG insets in stops")->capture_default_str();
   cmd->add_option("--out", a->out, "output directory")->capture_default_str();
   cmd->add_option("--timeout", a->timeout_s, "seconds for each call (a reference can take long)")->capture_default_str();
-  return [a] { return run_eval(*a); };
+  return [a, frames, shutter, splats] {
+    if (shutter->count() > 0) a->shutter = a->shutter_value;
+    if (splats->count() > 0) a->splats_per_frame = a->splats_value;
+    return run_eval(*a, frames->count() > 0);
+  };
 }
 
 }  // namespace strata::client

@@ -5,9 +5,12 @@
 #include <stdexcept>
 
 #include "connection.h"
+#include "eval_frames.h"
 
 namespace strata::client {
 namespace {
+
+constexpr uint32_t k_max_splats_per_frame = 64;  // the range of RenderOptions.splats_per_frame (render.proto)
 
 std::string joined(const std::vector<std::string>& items) {
   std::string s;
@@ -76,6 +79,9 @@ void EvalClient::check(const EvalSettings& s) {
   if (s.max_depth > l.max_depth())
     throw std::runtime_error("--max-depth = " + std::to_string(s.max_depth) + " is over the server's max_depth " +
                              std::to_string(l.max_depth()));
+  if (s.splats_per_frame && (*s.splats_per_frame < 1 || *s.splats_per_frame > k_max_splats_per_frame))
+    throw std::runtime_error("--splats-per-frame = " + std::to_string(*s.splats_per_frame) + " is outside [1, " +
+                             std::to_string(k_max_splats_per_frame) + "] (RenderOptions.splats_per_frame)");
 }
 
 v1::SceneSource EvalClient::scene_source(const std::string& scene) const {
@@ -91,8 +97,8 @@ ReferenceImage EvalClient::reference(const std::string& scene, uint32_t frame, c
   *req.mutable_scene() = scene_source(scene);
   req.mutable_resolution()->set_width(s.width);
   req.mutable_resolution()->set_height(s.height);
-  req.mutable_frame()->set_animation_frame(frame);
-  if (frame > 0) req.mutable_previous_frame()->set_animation_frame(frame - 1);
+  *req.mutable_frame() = eval_frame_state(s, frame);
+  if (frame > 0) *req.mutable_previous_frame() = eval_frame_state(s, frame - 1);
   req.set_max_depth(s.max_depth);
   req.set_seed(s.seed);
   req.set_spp(s.reference_spp);
@@ -126,6 +132,7 @@ void EvalClient::run_method(const std::string& scene, const std::string& method,
   req.set_seed(s.seed);
   req.mutable_options()->set_spp(spp);
   if (s.max_depth) req.mutable_options()->set_max_depth(s.max_depth);
+  if (s.splats_per_frame) req.mutable_options()->set_splats_per_frame(*s.splats_per_frame);
   req.add_encodings(v1::IMAGE_ENCODING_RAW_RGBA16F);
   v1::Session session;
   {
@@ -149,10 +156,9 @@ void EvalClient::run_method(const std::string& scene, const std::string& method,
     uint32_t received = 0;
     try {
     for (uint32_t f = 0; f < s.frames; ++f) {  // lockstep: every input gets its own frame
-      v1::FrameInput in;
+      v1::FrameInput in = eval_frame_input(s, f);
       if (f == 0) in.set_session(session.name());
       in.set_sequence(f + 1);
-      in.set_animation_frame(f);
       if (!stream->Write(in)) break;
       v1::Frame frame;
       if (!stream->Read(&frame)) break;

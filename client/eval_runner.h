@@ -1,7 +1,8 @@
 #pragma once
 // The RPCs of `strata eval`: the server's status, scenes and methods (checked before any work),
 // references of exact frame states (RenderReference), and lockstep streams of a method over the
-// frames of a scene's default animation, with every frame's HDR image and per-pass GPU times.
+// frames (a scene's default animation or a camera path, eval_frames.h), with every frame's HDR
+// image and per-pass GPU times.
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -26,6 +27,10 @@ struct EvalSettings {
   uint32_t reference_spp = 1024;
   float reference_error = 0.0f;    // 0: no early stop
   bool equal_time = false;
+  std::string camera_path;         // empty: each scene's default animation
+  std::vector<v1::FrameInput> path;  // its entries, one per frame (eval_frames.h)
+  std::optional<float> shutter;    // --shutter: every entry's camera.shutter
+  std::optional<uint32_t> splats_per_frame;  // the sessions' RenderOptions.splats_per_frame (unset: the server's)
   std::string out = "out/eval";
   double timeout_s = 3600.0;       // per RPC (a reference may take long on lavapipe)
 };
@@ -57,12 +62,12 @@ class EvalClient {
   // the server offers, and settings over the server's limits.
   void check(const EvalSettings& s);
 
-  // The reference of `frame` of the scene's default animation (with the previous frame's state
-  // for frames > 0, for the disoccluded mask).
+  // The reference of `frame` (eval_frame_state), with the previous frame's state for frames > 0
+  // (for the disoccluded mask, and where an open shutter opens).
   ReferenceImage reference(const std::string& scene, uint32_t frame, const EvalSettings& s);
 
-  // Creates a session of `method` with `spp`, streams frames 0..frames-1 of the default
-  // animation in lockstep (RAW_RGBA16F) and hands each frame to `on_frame`, then deletes the session.
+  // Creates a session of `method` with `spp`, streams frames 0..frames-1 (eval_frame_input) in
+  // lockstep (RAW_RGBA16F) and hands each frame to `on_frame`, then deletes the session.
   void run_method(const std::string& scene, const std::string& method, uint32_t spp, const EvalSettings& s,
                   const std::function<void(MethodImage&&)>& on_frame);
 

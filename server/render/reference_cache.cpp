@@ -34,6 +34,7 @@ void hash_camera(Sha256& h, const scene::Camera& c) {
   h.pod(c.yfov);
   h.pod(c.aperture);
   h.pod(c.focus_distance);
+  h.pod(c.shutter);
 }
 
 template <class T>
@@ -153,7 +154,8 @@ std::string reference_cache_key(const ReferenceKey& k) {
   h.pod(RenderSettings{}.samples_per_dispatch);
   h.text(k.scene_hash);
   hash_camera(h, k.frame.camera);
-  h.pod(k.shutter);
+  h.pod(uint8_t(k.frame.camera_open.has_value()));
+  if (k.frame.camera_open) hash_camera(h, *k.frame.camera_open);
   h.array(k.frame.transforms);
   h.array(k.frame.lods);
   h.pod(k.width);

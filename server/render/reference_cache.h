@@ -55,8 +55,9 @@ std::string scene_content_hash(const scene::Scene& scene);
 // Everything a reference image depends on.
 struct ReferenceKey {
   std::string scene_hash;       // scene_content_hash
-  scene::FrameState frame;      // the resolved state: camera, every transform, every LoD level
-  float shutter = 0.0f;
+  // The resolved state: camera (its shutter included), where the shutter opened (motion blur,
+  // RS-main 4.4; none for an instant), every transform, every LoD level.
+  scene::FrameState frame;
   uint32_t width = 0, height = 0, max_depth = 0, seed = 0, spp = 0;
   float relative_error = 0.0f;  // the early-stop target (0: none)
 };

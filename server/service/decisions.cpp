@@ -118,9 +118,14 @@ std::vector<v1::Decision> decide(const MethodTraits& method, const v1::RenderOpt
                      u(eff.splats_per_frame()), method.splatting,
                      method.splatting ? "K splats per frame over the shutter interval (motion blur)"
                                       : "method " + m + " does not splat; used by restir-splat methods"));
-  out.push_back(make("motion_blur", "", "off", method.splatting,
-                     method.splatting ? "FrameInput.camera.shutter opens the shutter"
-                                      : "method " + m + " renders each frame at one instant; FrameInput.camera.shutter is accepted and not used"));
+  {
+    // Motion blur (RS-main 4.4) for every method; FrameInput.camera.shutter > 0 opens it per frame.
+    std::string how = "pt integrates each pixel over the shutter (time sampled uniformly)";
+    if (method.splatting) how = "reservoirs keep their time and splat into K = splats_per_frame time partitions (RS-main Eq. 19)";
+    else if (method.reuse) how = "reservoirs keep their time offset; backprojection uses the motion at the frame's instant (RS-main 4.4.1)";
+    out.push_back(make("motion_blur", "", "shutter", true,
+                       "FrameInput.camera.shutter > 0 opens the shutter on the way from the previous frame's camera; " + how));
+  }
 
   // Features of the path tracer that follow from the scene.
   const bool png = std::find(encodings.begin(), encodings.end(), v1::IMAGE_ENCODING_PNG_PREVIEW) != encodings.end();

@@ -20,7 +20,7 @@ namespace strata::service {
 struct PendingInput {
   uint64_t sequence = 0;
   std::optional<uint32_t> animation_frame;     // the whole state from the default animation, first
-  std::optional<CameraInput> camera;
+  std::optional<scene::Camera> camera;
   std::map<uint32_t, glm::mat4> transforms;     // by instance id
   std::map<uint32_t, uint32_t> lods;            // by instance id
   v1::RenderOptions options;                    // only the fields that change

@@ -49,31 +49,31 @@ glm::quat check_quaternion(const v1::Quaternion& q, const std::string& field) {
   return glm::normalize(r);
 }
 
-CameraInput check_camera(const v1::Camera& c, const std::string& field) {
+scene::Camera check_camera(const v1::Camera& c, const std::string& field) {
   if (!c.has_position()) fail_invalid(field + ".position is required");
   if (!c.has_orientation()) fail_invalid(field + ".orientation is required");
-  CameraInput in;
-  in.camera.position = check_vec3(c.position(), field + ".position", k_max_coordinate);
-  in.camera.orientation = check_quaternion(c.orientation(), field + ".orientation");
+  scene::Camera cam;
+  cam.position = check_vec3(c.position(), field + ".position", k_max_coordinate);
+  cam.orientation = check_quaternion(c.orientation(), field + ".orientation");
   const float fov = c.vertical_fov();
   if (!std::isfinite(fov) || fov <= 0.0f || fov >= std::numbers::pi_v<float>)
     fail_invalid(field + ".vertical_fov = " + format_float(fov) + " rad is outside (0, pi)");
-  in.camera.yfov = fov;
+  cam.yfov = fov;
   const float aperture = c.aperture();
   if (!std::isfinite(aperture) || aperture < 0.0f || aperture > k_max_aperture)
     fail_invalid(field + ".aperture = " + format_float(aperture) + " m is outside [0, " + format_float(k_max_aperture) + "]");
-  in.camera.aperture = aperture;
+  cam.aperture = aperture;
   const float focus = c.focus_distance();
   if (!std::isfinite(focus) || focus < 0.0f || focus > k_max_coordinate)
     fail_invalid(field + ".focus_distance = " + format_float(focus) + " m is outside [0, " + format_float(k_max_coordinate) + "]");
   if (aperture > 0.0f && focus <= 0.0f)
     fail_invalid(field + ".focus_distance = " + format_float(focus) + " must be > 0 when " + field + ".aperture > 0");
-  in.camera.focus_distance = focus > 0.0f ? focus : 1.0f;
+  cam.focus_distance = focus > 0.0f ? focus : 1.0f;
   const float shutter = c.shutter();
   if (!std::isfinite(shutter) || shutter < 0.0f || shutter > 1.0f)
     fail_invalid(field + ".shutter = " + format_float(shutter) + " is outside [0, 1] (fraction of the frame interval)");
-  in.shutter = shutter;
-  return in;
+  cam.shutter = shutter;
+  return cam;
 }
 
 glm::mat4 check_transform(const v1::InstanceTransform& t, const std::string& field) {

@@ -25,11 +25,8 @@ glm::vec3 check_vec3(const v1::Vec3& v, const std::string& field, float max_abs)
 // Unit quaternion within 1e-3; returned normalised.
 glm::quat check_quaternion(const v1::Quaternion& q, const std::string& field);
 
-struct CameraInput {
-  scene::Camera camera;
-  float shutter = 0.0f;
-};
-CameraInput check_camera(const v1::Camera& c, const std::string& field);
+// Position, orientation, field of view, thin lens and shutter (motion blur, RS-main 4.4).
+scene::Camera check_camera(const v1::Camera& c, const std::string& field);
 
 // translate * rotate * scale; every part is required.
 glm::mat4 check_transform(const v1::InstanceTransform& t, const std::string& field);

@@ -99,6 +99,7 @@ render::RestirOptions restir_options(const v1::RenderOptions& e) {
   r.spatial_radius = e.spatial_radius();
   r.initial_candidates = e.initial_candidates();
   r.light_candidates = e.light_candidates();
+  r.splats_per_frame = e.splats_per_frame();
   return r;
 }
 

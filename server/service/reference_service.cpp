@@ -9,6 +9,7 @@
 #include "image/image.h"
 #include "render/disocclusion.h"
 #include "render/reference.h"
+#include "scene/shutter.h"
 #include "service/errors.h"
 #include "service/frame_input.h"
 #include "service/input_checks.h"
@@ -99,6 +100,16 @@ struct InFlight {
 
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
+// Where the shutter of `camera` opened (motion blur, RS-main 4.4): on the way from the previous
+// frame's camera, which an open shutter therefore needs.
+std::optional<scene::Camera> open_shutter(const scene::Camera& camera, const std::optional<scene::FrameState>& previous) {
+  if (!(camera.shutter > 0.0f)) return std::nullopt;
+  if (!previous)
+    fail_invalid("previous_frame is required when frame.camera.shutter = " + format_float(camera.shutter) +
+                 " > 0: the shutter opens on the way from the previous frame's camera (motion blur)");
+  return scene::shutter_open_camera(previous->camera, camera);
+}
+
 std::filesystem::path cache_dir(const ServiceConfig& config) {
   return config.reference_cache.empty() ? render::ReferenceCache::default_dir() : config.reference_cache;
 }
@@ -106,7 +117,7 @@ std::filesystem::path cache_dir(const ServiceConfig& config) {
 }  // namespace
 
 scene::FrameState resolve_frame_state(const v1::FrameState& state, const scene::Scene& scene, const ServiceLimits& limits,
-                                      const std::string& field, float* shutter) {
+                                      const std::string& field) {
   // The checks of a FrameInput (camera, transforms, LoD levels), with the field names under `field`.
   v1::FrameInput in;
   in.set_animation_frame(state.animation_frame());
@@ -120,11 +131,7 @@ scene::FrameState resolve_frame_state(const v1::FrameState& state, const scene::
     throw ServiceError(e.code, field + "." + e.what());
   }
   scene::FrameState out = scene.frame_state(state.animation_frame());
-  if (shutter) *shutter = 0.0f;
-  if (p.camera) {
-    out.camera = p.camera->camera;
-    if (shutter) *shutter = p.camera->shutter;
-  }
+  if (p.camera) out.camera = *p.camera;
   for (const auto& [id, m] : p.transforms) out.transforms.at(id) = m;
   for (const auto& [id, level] : p.lods) out.lods.at(id) = level;
   return out;
@@ -206,11 +213,13 @@ grpc::Status ReferenceService::render(grpc::ServerContext* ctx, const v1::Refere
     const scene::Scene& sc = *loaded.scene;
     render::ReferenceKey key;
     key.scene_hash = loaded.hash;
-    key.frame = resolve_frame_state(req.frame(), sc, limits, "frame", &key.shutter);
+    key.frame = resolve_frame_state(req.frame(), sc, limits, "frame");
+    std::optional<scene::FrameState> previous;
+    if (req.has_previous_frame()) previous = resolve_frame_state(req.previous_frame(), sc, limits, "previous_frame");
+    key.frame.camera_open = open_shutter(key.frame.camera, previous);
     std::optional<ReferenceJob::MaskRequest> mask;
-    if (req.has_previous_frame())
-      mask = ReferenceJob::MaskRequest{resolve_frame_state(req.previous_frame(), sc, limits, "previous_frame"), key.frame,
-                                       req.resolution().width(), req.resolution().height()};
+    if (previous)
+      mask = ReferenceJob::MaskRequest{*previous, key.frame, req.resolution().width(), req.resolution().height()};
     key.width = req.resolution().width();
     key.height = req.resolution().height();
     key.max_depth = req.max_depth() ? std::min(req.max_depth(), limits.max_depth) : std::min(k_default_max_depth, limits.max_depth);

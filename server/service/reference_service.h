@@ -20,9 +20,9 @@ namespace strata::service {
 
 // Resolves a FrameState message against `scene`: the default animation's frame, then the camera,
 // transforms and LoD levels that are set. Errors are INVALID_ARGUMENT naming the field under
-// `field` (e.g. "frame.camera.position.x"). `shutter` receives the camera's shutter (0 unset).
+// `field` (e.g. "frame.camera.position.x"). camera_open is left unset (it needs the previous frame).
 scene::FrameState resolve_frame_state(const v1::FrameState& state, const scene::Scene& scene, const ServiceLimits& limits,
-                                      const std::string& field, float* shutter = nullptr);
+                                      const std::string& field);
 
 class ReferenceService {
  public:

@@ -3,6 +3,7 @@
 #include <glm/glm.hpp>
 
 #include "include/frame_data.h"
+#include "scene/shutter.h"
 #include "service/input_checks.h"
 #include "service/scene_analysis.h"
 
@@ -36,6 +37,7 @@ std::vector<std::string> restir_changes(const render::RestirOptions& a, const re
   field("spatial_radius", a.spatial_radius, b.spatial_radius);
   field("initial_candidates", a.initial_candidates, b.initial_candidates);
   field("light_candidates", a.light_candidates, b.light_candidates);
+  field("splats_per_frame", a.splats_per_frame, b.splats_per_frame);
   return out;
 }
 
@@ -184,7 +186,7 @@ void Session::apply_locked(const PendingInput& input, std::string& reset_reason)
   }
 
   if (input.animation_frame) frame_state_ = scene_->frame_state(*input.animation_frame);
-  if (input.camera) frame_state_.camera = input.camera->camera;
+  if (input.camera) frame_state_.camera = *input.camera;
   for (const auto& [id, m] : input.transforms) frame_state_.transforms.at(id) = m;
   for (const auto& [id, level] : input.lods) frame_state_.lods.at(id) = level;
 }
@@ -202,9 +204,13 @@ RenderedFrame Session::render(PendingInput input) {
   }
   apply_locked(input, reason);
   if (!renderer_) create_renderer_locked();
+  // Motion blur (RS-main 4.4): the shutter opens on the way from the camera of the frame rendered
+  // before; the session's first frame has none and is an instant.
+  frame_state_.camera_open = last_camera_ ? scene::shutter_open_camera(*last_camera_, frame_state_.camera) : std::nullopt;
 
   RenderedFrame f;
   f.result = renderer_->render(frame_state_, uint32_t(index));
+  last_camera_ = frame_state_.camera;
   const auto done = Clock::now();
   f.frame_index = index;
   f.input_sequence = input.sequence;

@@ -111,6 +111,7 @@ class Session {
   std::mutex render_mu_;
   std::unique_ptr<render::Renderer> renderer_;
   scene::FrameState frame_state_;
+  std::optional<scene::Camera> last_camera_;  // of the frame rendered last (where its shutter closed)
   render::RenderSettings settings_;
 
   // Description and counters: guarded by mu_ (taken after render_mu_ when both are needed).

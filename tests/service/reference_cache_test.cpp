@@ -71,7 +71,16 @@ TEST(ReferenceCacheTest, KeyChangesWithEveryFieldOfFrameStateAndSettings) {
       {"camera.yfov", [](ReferenceKey& x) { x.frame.camera.yfov += 0.01f; }},
       {"camera.aperture", [](ReferenceKey& x) { x.frame.camera.aperture = 0.01f; }},
       {"camera.focus_distance", [](ReferenceKey& x) { x.frame.camera.focus_distance += 0.5f; }},
-      {"shutter", [](ReferenceKey& x) { x.shutter = 0.5f; }},
+      {"camera.shutter", [](ReferenceKey& x) { x.frame.camera.shutter = 0.5f; }},
+      {"camera_open", [](ReferenceKey& x) { x.frame.camera_open = x.frame.camera; }},
+      {"camera_open.position", [](ReferenceKey& x) {
+         x.frame.camera_open = x.frame.camera;
+         x.frame.camera_open->position.x -= 1e-3f;
+       }},
+      {"camera_open.orientation", [](ReferenceKey& x) {
+         x.frame.camera_open = x.frame.camera;
+         x.frame.camera_open->orientation = glm::normalize(x.frame.camera.orientation * glm::quat(0.999f, 0, 0.01f, 0));
+       }},
       {"transform of instance 0", [](ReferenceKey& x) { x.frame.transforms[0][3][1] += 1e-3f; }},
       {"transform of the last instance",
        [](ReferenceKey& x) { x.frame.transforms.back() = glm::scale(x.frame.transforms.back(), glm::vec3(1.001f)); }},

@@ -1,7 +1,9 @@
 // RenderReference through the in-process server: every bad request answered with its status and
 // a message naming the field and the limit while another session keeps streaming; references
 // accumulate to the target spp or stop early at the target error, come from the cache the second
-// time, and a corrupt cache entry is rendered again.
+// time, and a corrupt cache entry is rendered again; an open shutter blurs a moving camera, in a
+// reference as in a stream.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -41,6 +43,32 @@ class ReferenceTest : public ServiceTest {
     grpc::ClientContext ctx;
     ctx.set_deadline(std::chrono::system_clock::now() + 120s);
     return stub().RenderReference(&ctx, req, out);
+  }
+
+  // A camera at x looking down -Z (over carousel from its side), with a shutter.
+  static v1::Camera moving_camera(float x, float shutter) {
+    v1::Camera c;
+    c.mutable_position()->set_x(x);
+    c.mutable_position()->set_y(1.6f);
+    c.mutable_position()->set_z(6.0f);
+    c.mutable_orientation()->set_w(1.0f);
+    c.set_vertical_fov(0.8f);
+    c.set_shutter(shutter);
+    return c;
+  }
+
+  // Carousel at 32x32, 64 spp: the camera at x = 0 with `shutter`, the previous frame's at
+  // `previous_x` (the objects as in animation frame 0).
+  static v1::ReferenceRequest blur_request(float shutter, float previous_x, uint32_t seed) {
+    v1::ReferenceRequest r = ok_request(64);
+    r.mutable_scene()->set_builtin("carousel");
+    r.mutable_resolution()->set_width(32);
+    r.mutable_resolution()->set_height(32);
+    r.set_seed(seed);
+    *r.mutable_frame()->mutable_camera() = moving_camera(0.0f, shutter);
+    r.mutable_previous_frame()->set_animation_frame(0);
+    *r.mutable_previous_frame()->mutable_camera() = moving_camera(previous_x, 0.0f);
+    return r;
   }
 
   static image::Image decoded(const v1::Reference& r) {
@@ -104,6 +132,13 @@ TEST_F(ReferenceTest, EveryBadRequestGetsItsStatusAndMessage) {
          l->set_instance_id(0);
          l->set_level(50);
        }, invalid, "frame.lod_changes[0].level = 50 is out of range"},
+      {"shutter over 1", [](auto& r) {
+         *r.mutable_frame()->mutable_camera() = moving_camera(0.0f, 2.0f);
+         r.mutable_previous_frame()->set_animation_frame(0);
+       }, invalid, "frame.camera.shutter = 2 is outside [0, 1]"},
+      {"open shutter without previous frame", [](auto& r) { *r.mutable_frame()->mutable_camera() = moving_camera(0.0f, 0.5f); },
+       invalid, "previous_frame is required when frame.camera.shutter = 0.5 > 0: the shutter opens on the way from the "
+                "previous frame's camera"},
       {"bad previous frame", [&](auto& r) {
          auto* c = r.mutable_previous_frame()->mutable_camera();
          c->mutable_position()->set_y(std::numeric_limits<float>::infinity());
@@ -193,6 +228,72 @@ TEST_F(ReferenceTest, RendersThenAnswersFromTheCacheAndRerendersACorruptEntry) {
   ASSERT_TRUE(reference(moved, &other_cached).ok());
   EXPECT_TRUE(other_cached.cached());
   EXPECT_EQ(other_cached.disoccluded_mask(), other.disoccluded_mask());
+}
+
+// Relative L1 difference of two images' means over 8x8-pixel blocks (the blocks average the noise
+// away, so that what remains is where the images' content differs).
+double block_difference(const image::Image& a, const image::Image& b) {
+  double diff = 0.0, sum = 0.0;
+  for (uint32_t by = 0; by < a.height; by += 8)
+    for (uint32_t bx = 0; bx < a.width; bx += 8)
+      for (uint32_t c = 0; c < 3; ++c) {
+        double ma = 0.0, mb = 0.0;
+        for (uint32_t y = by; y < std::min(by + 8, a.height); ++y)
+          for (uint32_t x = bx; x < std::min(bx + 8, a.width); ++x) {
+            ma += a.rgba[4 * (size_t(y) * a.width + x) + c];
+            mb += b.rgba[4 * (size_t(y) * b.width + x) + c];
+          }
+        diff += std::fabs(ma - mb);
+        sum += ma;
+      }
+  return diff / sum;
+}
+
+// Motion blur (RS-main 4.4): with the shutter open over a 3 m pan from the previous frame's
+// camera, the reference is the mean over the shutter, another image and cache entry than the
+// instant's; an open shutter on a camera that does not move renders the instant.
+TEST_F(ReferenceTest, AnOpenShutterBlursAMovingCamera) {
+  v1::Reference sharp, sharp_other_seed, blurred, still;
+  ASSERT_TRUE(reference(blur_request(0.0f, -3.0f, 5), &sharp).ok());
+  ASSERT_TRUE(reference(blur_request(0.0f, -3.0f, 6), &sharp_other_seed).ok());
+  const grpc::Status st = reference(blur_request(1.0f, -3.0f, 5), &blurred);
+  ASSERT_TRUE(st.ok()) << st.error_message();
+  ASSERT_TRUE(reference(blur_request(1.0f, 0.0f, 5), &still).ok());
+  EXPECT_NE(blurred.cache_key(), sharp.cache_key());
+  EXPECT_NE(still.cache_key(), sharp.cache_key()) << "the camera's shutter is in the key";
+  EXPECT_EQ(still.image().data(), sharp.image().data()) << "a still camera's open shutter renders the instant";
+  const double noise = block_difference(decoded(sharp), decoded(sharp_other_seed));
+  const double blur = block_difference(decoded(sharp), decoded(blurred));
+  EXPECT_GT(blur, 4.0 * noise) << "blurred vs sharp " << blur << ", two seeds of the sharp image " << noise;
+
+  v1::Reference again;
+  ASSERT_TRUE(reference(blur_request(1.0f, -3.0f, 5), &again).ok());
+  EXPECT_TRUE(again.cached());
+  EXPECT_EQ(again.image().data(), blurred.image().data());
+}
+
+// A stream opens its shutter on the way from the camera of the frame it rendered before (none
+// for its first frame: an instant), as RenderReference does from previous_frame: the stream's
+// frame matches the blurred reference, not the sharp one.
+TEST_F(ReferenceTest, AStreamBlursLikeItsReference) {
+  const v1::Session s = create_ok(stub(), session_request("carousel", 32, 32, 64, 9));
+  StreamClient stream(stub());
+  std::optional<v1::Frame> last;
+  for (uint64_t i = 1; i <= 2; ++i) {
+    v1::FrameInput in = frame_input(i, i == 1 ? s.name() : "", 0);
+    *in.mutable_camera() = moving_camera(i == 1 ? -3.0f : 0.0f, 1.0f);
+    ASSERT_TRUE(stream.send(in));
+    last = stream.read();
+    ASSERT_TRUE(last.has_value());
+  }
+  const grpc::Status closed = stream.close();
+  ASSERT_TRUE(closed.ok()) << closed.error_message();
+  v1::Reference blurred, sharp;
+  ASSERT_TRUE(reference(blur_request(1.0f, -3.0f, 5), &blurred).ok());
+  ASSERT_TRUE(reference(blur_request(0.0f, -3.0f, 5), &sharp).ok());
+  const image::Image frame = frame_image(*last);
+  const double to_blurred = block_difference(decoded(blurred), frame), to_sharp = block_difference(decoded(sharp), frame);
+  EXPECT_LT(to_blurred, 0.5 * to_sharp) << "stream vs blurred reference " << to_blurred << ", vs sharp " << to_sharp;
 }
 
 TEST_F(ReferenceTest, StopsEarlyAtTheTargetError) {
