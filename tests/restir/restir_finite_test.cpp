@@ -1,12 +1,15 @@
 // DESIGN.md section 6 for the ReSTIR methods: on every built-in scene (including `stiff`, with
 // radiance 1e6 beside a near-specular floor), over a few frames of its animation, no pixel is
-// NaN or Inf and every guard that rejected something counted it in the frame statistics.
+// NaN or Inf and every guard that rejected something counted it in the frame statistics. Frames 2
+// and 3 open the shutter fully (motion blur from the previous frame's camera; the splat methods
+// splat into 2 time partitions), so sharp frames, blurred ones and the change between them are covered.
 #include <cmath>
 #include <cstdio>
 
 #include "gpu/gpu_context.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"
+#include "scene/shutter.h"
 
 namespace strata::test {
 namespace {
@@ -26,10 +29,16 @@ TEST_P(RestirFinite, EveryPixelOfEveryFrameIsFinite) {
     rs.max_depth = 8;
     rs.restir.spatial_neighbors = 2;
     rs.restir.spatial_radius = 5.0f;
+    rs.restir.splats_per_frame = 2;
     render::Renderer renderer(gpu_context(), s, rs);
     uint64_t rejected = 0;
     for (uint32_t f = 0; f < 4; ++f) {
-      auto r = renderer.render(s.frame_state(f * 3), f);
+      scene::FrameState state = s.frame_state(f * 3);
+      if (f >= 2) {
+        state.camera.shutter = 1.0f;
+        state.camera_open = scene::shutter_open_camera(s.frame_state((f - 1) * 3).camera, state.camera);
+      }
+      auto r = renderer.render(state, f);
       for (float v : r.image.rgba) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << GetParam() << " " << method << " frame " << f;
       rejected += r.stats.nonfinite_rejected;
       if (f > 0) {
