@@ -10,6 +10,10 @@ namespace {
 constexpr VkDescriptorType k_storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 constexpr VkDescriptorType k_uniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
 
+gpu::Buffer storage(const gpu::Context& ctx, size_t bytes, const char* name) {
+  return gpu::Buffer(ctx, bytes, gpu::k_storage_usage, gpu::Memory::Device, name);
+}
+
 }  // namespace
 
 // One pass: its pipeline and a descriptor set per frame parity.
@@ -27,8 +31,8 @@ SplatTemporal::SplatTemporal(const SharedResources& shared, uint32_t width, uint
     : shared_(shared), width_(width), height_(height) {
   const auto& ctx = shared.ctx;
   const size_t pixels = size_t(width) * height;
-  count_ = gpu::Buffer(ctx, sizeof(uint32_t) * pixels, gpu::k_storage_usage, gpu::Memory::Device, "splat counts");
-  offsets_ = gpu::Buffer(ctx, sizeof(uint32_t) * (pixels + 1), gpu::k_storage_usage, gpu::Memory::Device, "splat offsets");
+  count_ = storage(ctx, sizeof(uint32_t) * pixels, "splat counts");
+  offsets_ = storage(ctx, sizeof(uint32_t) * (pixels + 1), "splat offsets");
 
   // The ReSTIR passes' common bindings (restir_pass.glsl) with the scene and its history.
   auto restir = [](std::vector<gpu::Binding> extra) {
@@ -84,10 +88,9 @@ void SplatTemporal::ensure_partitions(uint32_t partitions) {
   partitions_ = partitions;
   const auto& ctx = shared_.ctx;
   const size_t records = size_t(width_) * height_ * partitions;
-  auto storage = [&](size_t bytes, const char* name) { return gpu::Buffer(ctx, bytes, gpu::k_storage_usage, gpu::Memory::Device, name); };
-  splats_ = storage(sizeof(gpu::SplatRecord) * records, "splats");
-  target_ = storage(sizeof(uint32_t) * records, "splat targets");
-  list_ = storage(sizeof(uint32_t) * records, "splat list");
+  splats_ = storage(ctx, sizeof(gpu::SplatRecord) * records, "splats");
+  target_ = storage(ctx, sizeof(uint32_t) * records, "splat targets");
+  list_ = storage(ctx, sizeof(uint32_t) * records, "splat list");
   for (size_t parity = 0; parity < 2; ++parity) {
     for (Pass* p : {project_.get(), resample_.get()}) p->sets[parity]->bind_buffer(BINDING_SPLATS, splats_);
     project_->sets[parity]->bind_buffer(BINDING_SPLAT_TARGET, target_);

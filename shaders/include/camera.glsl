@@ -6,6 +6,17 @@
 
 #include "include/shutter.h"
 
+// The thin lens's point for lens sample `lens` in [0,1)^2, relative to the lens centre (concentric
+// disk of the aperture radius in the image plane's axes); 0 for a pinhole.
+vec3 lens_offset(GpuCamera cam, vec2 lens) {
+  if (!(cam.lens.x > 0.0)) return vec3(0.0);
+  vec2 disk = sample_concentric_disk(lens) * cam.lens.x;
+  return disk.x * normalize(cam.right.xyz) + disk.y * normalize(cam.up.xyz);
+}
+
+// The lens vertex of a lens sample (render space); the camera position for a pinhole.
+vec3 lens_point(GpuCamera cam, vec2 lens) { return cam.position.xyz + lens_offset(cam, lens); }
+
 // Camera ray through the subpixel position pixel + jitter of camera `cam` (box filter), with the
 // thin lens when the camera has an aperture; in render space.
 void primary_ray(GpuCamera cam, vec2 pixel, vec2 jitter, vec2 lens, out vec3 origin, out vec3 dir) {
@@ -14,8 +25,7 @@ void primary_ray(GpuCamera cam, vec2 pixel, vec2 jitter, vec2 lens, out vec3 ori
   origin = cam.position.xyz;
   if (cam.lens.x > 0.0) {
     vec3 focus_point = d * cam.lens.y;
-    vec2 disk = sample_concentric_disk(lens) * cam.lens.x;
-    vec3 offset = disk.x * normalize(cam.right.xyz) + disk.y * normalize(cam.up.xyz);
+    vec3 offset = lens_offset(cam, lens);
     origin += offset;
     dir = normalize(focus_point - offset);
   } else {

@@ -40,13 +40,6 @@ SurfaceHit x1_in(bool prev, SurfacePoint x1, out bool ok) {
   return load_hit_in(prev, h);
 }
 
-// The lens vertex of a lens sample (render space); the camera position for a pinhole.
-vec3 lens_point(GpuCamera cam, vec2 lens) {
-  if (!(cam.lens.x > 0.0)) return cam.position.xyz;
-  vec2 disk = sample_concentric_disk(lens) * cam.lens.x;
-  return cam.position.xyz + disk.x * normalize(cam.right.xyz) + disk.y * normalize(cam.up.xyz);
-}
-
 // Projects p through the thin lens from lens point o to the image (pixel + subpixel); false when it
 // falls outside. For a pinhole (o = the camera position) this is the perspective projection.
 bool project(GpuCamera cam, uint w, uint h, vec3 p, vec3 o, out uvec2 pixel, out vec2 jitter) {
