@@ -75,6 +75,20 @@ float mis3(float a, float b, float c) {
   return a / d;
 }
 
+// The next splat record that landed in this pixel after record `after` (all of them when `first_pick`):
+// the insert pass's atomics leave a pixel's list in any order, and the resampling below streams the
+// splats in increasing record order (previous pixel, then time partition), so that a frame is
+// reproducible bit for bit. A pixel holds few splats (splat.max_per_pixel), so the scan is cheap
+// next to the shifts.
+uint next_splat(uint first, uint last, uint after, bool first_pick) {
+  uint best = SPLAT_NONE;
+  for (uint i = first; i < last; ++i) {
+    uint r = b_list[i];
+    if ((first_pick || r > after) && r < best) best = r;
+  }
+  return best;
+}
+
 void count_shift(ShiftResult r) {
   atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
   atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], r.rays);
@@ -120,12 +134,14 @@ void main() {
   float from_r_b = 0.0;     // p-hat_prev(T^-1 Y^b) |dT^-1/dY^b|
   float c_r_b = 0.0;
   uint jobs = 4u + (last - first);
+  uint record = SPLAT_NONE;
   for (uint job = 0u; job < jobs; ++job) {
     uint s = job >= 4u ? first + job - 4u : 0u;
     SplatRecord rec;
     Reservoir y_s;
     if (job >= 4u) {
-      rec = b_splats[b_list[s]];
+      record = next_splat(first, last, record, job == 4u);
+      rec = b_splats[record];
       y_s = unpack_reservoir(rec.reservoir);
     }
     ShiftJob sj;
