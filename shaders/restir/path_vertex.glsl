@@ -1,11 +1,12 @@
 // Path vertices as both the candidate generator (restir_initial) and the shifts (path_space.glsl)
 // see them, so that both apply exactly the same rules: the scattering function, the light densities
-// of each frame, the technique MIS weight and the reconnectability rules (DESIGN.md section 6).
+// of each frame, the technique MIS weight and the reconnectability rules (restir/reconnection.h).
 // Needs: scene_bridge.glsl, u_frame (GpuFrameConstants) and u_restir (GpuRestirConstants).
 #ifndef STRATA_PATH_VERTEX_GLSL
 #define STRATA_PATH_VERTEX_GLSL
 
 #include "material/bsdf.h"
+#include "restir/reconnection.h"
 #include "restir/reservoir.h"
 #include "restir/thresholds.h"
 #include "sampling/mis.h"
@@ -50,7 +51,7 @@ Vertex make_vertex(SurfaceHit s, RayHit h, uint lod, vec3 dir_in) {
   make_onb(v.ns, v.t, v.b);
   v.wo = to_local(-dir_in, v.t, v.b, v.ns);
   v.bsdf = make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular);
-  v.rough = v.bsdf.alpha >= RECONNECT_MIN_ALPHA || max(v.bsdf.f0.r, max(v.bsdf.f0.g, v.bsdf.f0.b)) <= 0.0;
+  v.rough = rough_vertex(v.bsdf.alpha, max(v.bsdf.f0.r, max(v.bsdf.f0.g, v.bsdf.f0.b)));
   v.double_sided = (m.flags & MATERIAL_DOUBLE_SIDED) != 0u;
   v.material_emission = m.emission_roughness.rgb;
   v.emission = (front || v.double_sided) ? m.emission_roughness.rgb : vec3(0.0);
@@ -101,19 +102,13 @@ float technique_weight(bool nee, float light_pdf, float bsdf_pdf_value) {
   return nee ? mis_power(pl, bsdf_pdf_value) : mis_power(bsdf_pdf_value, pl);
 }
 
-// Reconnectability (Lin et al. 2022 section 6.2; DESIGN.md section 6): an intermediate vertex x_i
-// may be the reconnection vertex when it and x_{i-1} are rough, the edge between them is not short
-// relative to the primary hit's distance, and x_i is not seen at a grazing angle (where the
-// reconnection Jacobian is singular); the path's last vertex needs only a rough x_{n-1} and, on a
-// surface, the same edge and angle (its emission does not depend on direction). Generation and
-// shifts apply the same rules, so every shift is a bijection between paths of the same structure
-// and fails symmetrically.
+// Reconnectability of path vertices: the rules of restir/reconnection.h.
 bool rule_intermediate(Vertex before, Vertex v, float edge, float camera_distance) {
-  return before.rough && v.rough && edge >= RECONNECT_MIN_EDGE_RELATIVE * camera_distance && v.cos_in >= SHIFT_MIN_COS;
+  return reconnectable(before.rough, v.rough, edge, camera_distance, v.cos_in);
 }
 
 bool rule_end(Vertex before, bool escaped, float edge, float camera_distance, float cos_end) {
-  return before.rough && (escaped || (edge >= RECONNECT_MIN_EDGE_RELATIVE * camera_distance && cos_end >= SHIFT_MIN_COS));
+  return reconnectable_end(before.rough, escaped, edge, camera_distance, cos_end);
 }
 
 #endif

@@ -26,11 +26,29 @@ INLINE float reconnection_jacobian(vec3 x_k, vec3 n_k, vec3 base_prev, vec3 offs
   return j;
 }
 
-// A vertex pair may reconnect when both ends are rough enough and the edge is long enough
-// relative to the distance from the camera (DESIGN.md section 6).
-INLINE bool reconnectable(float alpha_prev, float alpha_k, float edge_length, float camera_distance) {
-  return alpha_prev >= RECONNECT_MIN_ALPHA && alpha_k >= RECONNECT_MIN_ALPHA &&
-         edge_length >= RECONNECT_MIN_EDGE_RELATIVE * camera_distance;
+// The reconnectability rules (Lin et al. 2022 section 6.2; docs/ARCHITECTURE.md), the one set that
+// candidate generation (restir_initial) and every shift (restir/path_vertex.glsl) apply, so that a
+// shift is a bijection between paths of the same structure and fails symmetrically.
+//
+// A vertex is rough enough to take part in a reconnection when its roughness is at least
+// RECONNECT_MIN_ALPHA or it has no specular lobe at all (f0 = 0: purely diffuse).
+INLINE bool rough_vertex(float alpha, float f0_max) { return alpha >= RECONNECT_MIN_ALPHA || f0_max <= 0.0f; }
+
+// The edge to a reconnection vertex must not be short relative to the primary hit's distance, and
+// the vertex must not be seen at a grazing angle (where the reconnection Jacobian is singular).
+INLINE bool reconnectable_edge(float edge_length, float camera_distance, float cos_at_vertex) {
+  return edge_length >= RECONNECT_MIN_EDGE_RELATIVE * camera_distance && cos_at_vertex >= SHIFT_MIN_COS;
+}
+
+// An intermediate vertex x_k may be the reconnection vertex after x_{k-1}.
+INLINE bool reconnectable(bool rough_prev, bool rough_k, float edge_length, float camera_distance, float cos_k) {
+  return rough_prev && rough_k && reconnectable_edge(edge_length, camera_distance, cos_k);
+}
+
+// The path's last vertex needs only a rough x_{n-1} and, on a surface, the edge and angle rule
+// (its emission does not depend on the direction); an escaped path only the rough x_{n-1}.
+INLINE bool reconnectable_end(bool rough_prev, bool escaped, float edge_length, float camera_distance, float cos_end) {
+  return rough_prev && (escaped || reconnectable_edge(edge_length, camera_distance, cos_end));
 }
 
 STRATA_NAMESPACE_END

@@ -118,10 +118,19 @@ TEST(RestirReconnection, SingularCasesFailTheShift) {
   EXPECT_EQ(reconnection_jacobian(xk, n, vec3(1, 0, 1e-6f), vec3(0, 0, 1)), 0.0f);  // grazing base edge
   EXPECT_EQ(reconnection_jacobian(xk, n, vec3(0.0f), vec3(0, 0, 1)), 0.0f);         // coincident vertices
   EXPECT_EQ(reconnection_jacobian(xk, n, vec3(0, 0, 1000), vec3(0, 0, 0.001f)), 0.0f);  // J = 1e12: refused
-  EXPECT_TRUE(reconnectable(0.5f, 0.3f, 1.0f, 10.0f));
-  EXPECT_FALSE(reconnectable(0.05f, 0.3f, 1.0f, 10.0f));  // near-specular previous vertex
-  EXPECT_FALSE(reconnectable(0.5f, 0.1f, 1.0f, 10.0f));   // near-specular reconnection vertex
-  EXPECT_FALSE(reconnectable(0.5f, 0.5f, 0.05f, 10.0f));  // edge shorter than 1% of the camera distance
+  // The rules the shaders apply (restir/path_vertex.glsl calls these): roughness, no specular lobe,
+  // relative edge length, grazing angle at the reconnection vertex.
+  EXPECT_TRUE(rough_vertex(0.3f, 0.04f));
+  EXPECT_FALSE(rough_vertex(0.1f, 0.04f));  // near-specular
+  EXPECT_TRUE(rough_vertex(0.0f, 0.0f));    // smooth but without a specular lobe: purely diffuse
+  EXPECT_TRUE(reconnectable(true, true, 1.0f, 10.0f, 0.5f));
+  EXPECT_FALSE(reconnectable(false, true, 1.0f, 10.0f, 0.5f));   // near-specular previous vertex
+  EXPECT_FALSE(reconnectable(true, false, 1.0f, 10.0f, 0.5f));   // near-specular reconnection vertex
+  EXPECT_FALSE(reconnectable(true, true, 0.05f, 10.0f, 0.5f));   // edge shorter than 1% of the camera distance
+  EXPECT_FALSE(reconnectable(true, true, 1.0f, 10.0f, 1e-4f));   // grazing reconnection vertex
+  EXPECT_TRUE(reconnectable_end(true, true, 0.0f, 10.0f, 0.0f));  // an escaped end needs only a rough x_{n-1}
+  EXPECT_FALSE(reconnectable_end(false, true, 0.0f, 10.0f, 1.0f));
+  EXPECT_FALSE(reconnectable_end(true, false, 0.05f, 10.0f, 1.0f));
 }
 
 TEST(RestirReprojection, JacobianHandValues) {
