@@ -1,4 +1,4 @@
-// `strata eval` (issue 6): error against run time. For each scene, gets the converged reference of
+// `strata eval`: error against run time. For each scene, gets the converged reference of
 // every frame of its default animation, or of a camera path (eval_frames.h), from stratad
 // (RenderReference, cached by the server), plays the frames with each method, scores every frame
 // against its reference (RelMSE, MAPE, HDR-FLIP; also over the disoccluded pixels when the

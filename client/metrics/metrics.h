@@ -1,5 +1,5 @@
 #pragma once
-// Image error metrics against a reference, for `strata eval` (issue 6): RelMSE, MAPE and HDR-FLIP
+// Image error metrics against a reference, for `strata eval`: RelMSE, MAPE and HDR-FLIP
 // (Andersson et al. 2020, "FLIP: A Difference Evaluator for Alternating Images"; Andersson et al.
 // 2021, "Visualizing Errors in Rendered High Dynamic Range Images"). Every metric can be restricted
 // to a pixel mask (e.g. the disoccluded pixels of a frame).

@@ -1,5 +1,5 @@
 #pragma once
-// The evaluation report of `strata eval` (issue 6): results.csv, results.json and a self-contained
+// The evaluation report of `strata eval`: results.csv, results.json and a self-contained
 // report.html (plots with uPlot inlined at build time, images as data URIs; no network access).
 #include <cstdint>
 #include <filesystem>

@@ -1,5 +1,5 @@
 #pragma once
-// A converged `pt` reference of one frame state, rendered by accumulation in batches (issue 6).
+// A converged `pt` reference of one frame state, rendered by accumulation in batches .
 // The samples are those of Renderer::render(accumulate) with one frame state, so the image does
 // not depend on how the samples are split into batches; the spread of the batch means gives the
 // estimate of the image's relative standard error that the early stop uses.

@@ -1,5 +1,5 @@
 #pragma once
-// The on-disk cache of converged references (issue 6): one file per reference, named by a SHA-256
+// The on-disk cache of converged references: one file per reference, named by a SHA-256
 // content hash of everything the image depends on (the scene's content, the exact frame state,
 // the settings and the renderer version). Writes are atomic (a temporary file in the same
 // directory, flushed, then renamed), so concurrent or interrupted writers never leave a partial

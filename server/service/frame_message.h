@@ -1,6 +1,6 @@
 #pragma once
 // A rendered frame as the Frame message: images in the requested encodings, per-pass GPU time,
-// the frame statistics of DESIGN.md section 4, and what happened since the previous frame.
+// the frame statistics of docs/ARCHITECTURE.md, Statistics, and what happened since the previous frame.
 #include "render/frame_stats.h"
 #include "service/session.h"
 #include "strata/v1/render.pb.h"

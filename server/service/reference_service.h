@@ -1,5 +1,5 @@
 #pragma once
-// RenderReference (issue 6): converged `pt` references of exact frame states, rendered by
+// RenderReference: converged `pt` references of exact frame states, rendered by
 // accumulation in batches that take turns with sessions' frames on the frame scheduler, and
 // cached on disk (render::ReferenceCache) by a content hash of scene, frame state and settings.
 #include <atomic>

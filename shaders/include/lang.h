@@ -1,5 +1,5 @@
 // Lets one header compile as GLSL 460 and as C++20, so that structs and math that both the host
-// and the device use are written once (DESIGN.md section 1).
+// and the device use are written once (docs/ARCHITECTURE.md, Layout).
 #ifndef STRATA_LANG_H
 #define STRATA_LANG_H
 

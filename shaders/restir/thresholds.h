@@ -1,4 +1,4 @@
-// Every robustness threshold of the resampling library, in one place (DESIGN.md section 6).
+// Every robustness threshold of the resampling library, in one place (docs/ARCHITECTURE.md, Robustness).
 #ifndef STRATA_RESTIR_THRESHOLDS_H
 #define STRATA_RESTIR_THRESHOLDS_H
 #include "include/lang.h"
@@ -16,7 +16,7 @@ CONST_DEF float RECONNECT_MIN_EDGE_RELATIVE = 1e-2f;
 CONST_DEF float SHIFT_MIN_COS = 1e-3f;
 // Jacobians outside [1/J_MAX, J_MAX] fail the shift instead of producing a huge weight.
 CONST_DEF float SHIFT_MAX_JACOBIAN = 1e4f;
-// Default confidence cap c_cap (DESIGN.md section 2).
+// Default confidence cap c_cap (docs/ARCHITECTURE.md, Methods).
 CONST_DEF float CONFIDENCE_CAP_DEFAULT = 20.0f;
 
 STRATA_NAMESPACE_END

@@ -10,7 +10,7 @@ STRATA_NAMESPACE_BEGIN
 CONST_DEF float RAY_OFFSET_ORIGIN = 1.0f / 32.0f;
 CONST_DEF float RAY_OFFSET_FLOAT_SCALE = 1.0f / 65536.0f;
 CONST_DEF float RAY_OFFSET_INT_SCALE = 256.0f;
-// Visibility rays stop this fraction short of their target (DESIGN.md section 6).
+// Visibility rays stop this fraction short of their target (docs/ARCHITECTURE.md, Robustness).
 CONST_DEF float SHADOW_RAY_SHORTEN = 1e-4f;
 
 INLINE float offset_component(float p, float n) {

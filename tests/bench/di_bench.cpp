@@ -1,5 +1,5 @@
 // strata_di_bench: the DI tutorial's temporal-reuse experiments (seed 002, section 6) repeated on
-// `cornell` with restir-di (issue 4, point 3).
+// `cornell` with restir-di .
 //
 // Configurations (all restir-di, 1 path per pixel, `--light-candidates` NEE candidates at x1):
 //   ris               no temporal, no spatial reuse: per-frame RIS only (the tutorial's "no temporal")

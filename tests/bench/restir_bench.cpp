@@ -1,4 +1,4 @@
-// strata_restir_bench: equal-time RelMSE of restir-gather against the path tracer (issue 4, "Measure").
+// strata_restir_bench: equal-time RelMSE of restir-gather against the path tracer .
 //
 // Per scene, at the animation's last frame F = frames - 1:
 //   reference  pt of frame_state(F) accumulated to --ref-spp (its own seed, independent of the rest);

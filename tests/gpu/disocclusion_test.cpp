@@ -1,4 +1,4 @@
-// Pass `disocclusion` (DESIGN.md section 4, `disoccluded_pixels`; the mask of issue 6's masked
+// Pass `disocclusion` (docs/ARCHITECTURE.md, Statistics, `disoccluded_pixels`; the mask of the masked
 // metrics): a quad in front of a wall moves sideways; the wall it uncovers is disoccluded, the quad
 // itself and the wall that was visible before are not; an unchanged frame has no disocclusion.
 #include <glm/gtc/matrix_transform.hpp>

@@ -1,5 +1,5 @@
 // The unbiasedness harness itself: an unbiased method (the path tracer with other seeds) passes it,
-// and a 3% bias in the same method is detected. Methods of issues 4 and 5 reuse this harness.
+// and a 3% bias in the same method is detected. Every ReSTIR method reuses this harness.
 #include <cstdio>
 
 #include "gpu/gpu_context.h"

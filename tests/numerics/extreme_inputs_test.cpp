@@ -1,4 +1,4 @@
-// The stiff/extreme suite (DESIGN.md section 6) for what exists today (the path tracer): mirrored
+// The stiff/extreme suite (docs/ARCHITECTURE.md, Robustness) for what exists today (the path tracer): mirrored
 // geometry keeps glTF's front faces, degenerate triangles and extreme image shapes stay finite,
 // LoD switching every frame and teleporting cameras never produce a non-finite sample.
 #include <cmath>

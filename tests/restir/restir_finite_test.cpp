@@ -1,4 +1,4 @@
-// DESIGN.md section 6 for the ReSTIR methods: on every built-in scene (including `stiff`, with
+// docs/ARCHITECTURE.md, Robustness for the ReSTIR methods: on every built-in scene (including `stiff`, with
 // radiance 1e6 beside a near-specular floor), over a few frames of its animation, no pixel is
 // NaN or Inf and every guard that rejected something counted it in the frame statistics. Frames 2
 // and 3 open the shutter fully (motion blur from the previous frame's camera; the splat methods

@@ -1,4 +1,4 @@
-// Unbiasedness of restir-gather and restir-di (issue 4) with the harness of tests/support:
+// Unbiasedness of restir-gather and restir-di with the harness of tests/support:
 // the per-pixel mean over R independent sequences (fresh seeds, F frames each; a sequence's value is
 // the mean of its frames 1..F-1, all of which reuse history) must match a converged `pt` reference
 // of the same frame states. The test per 4x4 block is a two-sided z-test at the Bonferroni threshold
@@ -157,7 +157,7 @@ std::vector<Case> cases() {
   v.push_back({.name = "carousel_moving_glossy", .scene = "carousel"});
   v.push_back({.name = "di_mode", .scene = "cornell", .method = "restir-di", .max_depth = 2,
                .options = [](render::RestirOptions& o) { o.light_candidates = 4; }});
-  // restir-splat (issue 5): the temporal reuse alone (spatial off) under each kind of motion, and
+  // restir-splat: the temporal reuse alone (spatial off) under each kind of motion, and
   // with the default spatial reuse on the moving, glossy carousel.
   auto splat_only = [](render::RestirOptions& o) { o.spatial = false; };
   v.push_back({.name = "splat_static", .scene = "cornell", .method = "restir-splat", .options = splat_only});

@@ -46,7 +46,7 @@ TEST_F(RestirTest, GatherSessionReportsItsOptionsAndStreamsReuseStatistics) {
   const v1::Session s = create_ok(stub(), req);
   ASSERT_FALSE(s.name().empty());
   EXPECT_EQ(s.method(), "restir-gather");
-  // Effective options: the renderer's defaults (DESIGN.md section 2) and what was asked.
+  // Effective options: the renderer's defaults (docs/ARCHITECTURE.md, Methods) and what was asked.
   EXPECT_EQ(s.options().spp(), 1u);
   EXPECT_EQ(s.options().shift(), v1::SHIFT_HYBRID);
   EXPECT_EQ(s.options().mis(), v1::MIS_PAIRWISE);

@@ -1,5 +1,5 @@
 #pragma once
-// The statistical test that every ReSTIR method must pass (issues 4 and 5): the mean over many
+// The statistical test that every ReSTIR method must pass the mean over many
 // independent runs (fresh seeds) of a method matches a converged reference.
 //
 // Per block of B x B pixels, each run gives the block's mean radiance; over R runs these are
