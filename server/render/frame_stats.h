@@ -1,5 +1,5 @@
 #pragma once
-// What every frame reports (DESIGN.md section 4): GPU time per pass, counters, memory, and which
+// What every frame reports (docs/ARCHITECTURE.md, Statistics): GPU time per pass, counters, memory, and which
 // passes ran or were left out and why.
 #include <cstdint>
 #include <map>
@@ -20,13 +20,14 @@ struct PassDecision {
 
 struct FrameStats {
   uint32_t frame = 0;
+  uint64_t pixels = 0;                            // width * height of the frame
   std::vector<gpu::PassTime> pass_ms;
   double gpu_ms_total = 0.0;
   std::map<std::string, uint64_t> rays_traced;   // by kind (pt: primary, bounce, shadow) or by pass (ReSTIR)
   std::map<std::string, uint64_t> reuse;          // ReSTIR: shifts attempted, samples taken from history/neighbours
   std::map<std::string, uint64_t> shift_failures; // ReSTIR: by pass and reason (restir_data.h SHIFT_FAIL_*)
   uint64_t paths = 0;
-  uint64_t nonfinite_rejected = 0;                // samples zeroed by the DESIGN.md section 6 guard
+  uint64_t nonfinite_rejected = 0;                // non-finite samples and weights zeroed (and counted)
   std::map<std::string, uint64_t> memory_bytes;   // by buffer group
   std::vector<PassDecision> passes;
   uint32_t tlas_builds = 0;

@@ -23,6 +23,13 @@ void fill_statistics(const render::FrameStats& s, v1::FrameStatistics* out) {
     auto* reuse = out->mutable_reuse();
     for (const auto& [name, n] : s.reuse) (*reuse->mutable_counters())[name] = n;
     for (const auto& [reason, n] : s.shift_failures) (*reuse->mutable_shift_failures())[reason] = n;
+    // The splat methods' per-pixel statistics (RS-main): splats per pixel, the fullest pixel, holes.
+    if (auto landed = s.reuse.find("splat.landed"); landed != s.reuse.end() && s.pixels > 0) {
+      auto* splats = reuse->mutable_splats();
+      splats->set_mean_per_pixel(double(landed->second) / double(s.pixels));
+      splats->set_max_per_pixel(uint32_t(s.reuse.at("splat.max_per_pixel")));
+      splats->set_holes(s.reuse.at("temporal.no_history"));
+    }
   }
 }
 
