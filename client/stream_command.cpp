@@ -252,7 +252,7 @@ Runner add_stream_command(CLI::App& app) {
   cmd->add_option("--scene", a->scene, "built-in scene name")->capture_default_str();
   cmd->add_option("--scene-file", a->scene_file, "a local .glb file, sent inline");
   cmd->add_option("--scene-path", a->scene_path, "a .gltf/.glb file in the server's --scene-dir");
-  cmd->add_option("--method", a->method, "rendering method: pt, restir-gather, restir-di, restir-splat, restir-splat-backup (the server's status lists those available)")
+  cmd->add_option("--method", a->method, "rendering method: one of the server's (ServerStatus.methods; stratad render --help describes each)")
       ->capture_default_str();
   cmd->add_option("--width", a->width, "image width")->capture_default_str();
   cmd->add_option("--height", a->height, "image height")->capture_default_str();

@@ -57,6 +57,8 @@ class Buffer {
 // Usage for buffers that shaders read or write.
 constexpr VkBufferUsageFlags k_storage_usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                                VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+// A storage buffer that also holds arguments of vkCmdDispatchIndirect.
+constexpr VkBufferUsageFlags k_indirect_usage = k_storage_usage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
 
 // A buffer holding `items`, at least `min_bytes` long (zero-sized arrays still get a valid buffer).
 template <class T>

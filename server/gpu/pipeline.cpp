@@ -148,13 +148,19 @@ void dispatch_1d(VkCommandBuffer cmd, const ComputePipeline& p, const Descriptor
   vkCmdDispatch(cmd, (count + 63) / 64, 1, 1);
 }
 
+void dispatch_indirect(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, const Buffer& args,
+                       VkDeviceSize offset) {
+  bind(cmd, p, set, nullptr, 0);
+  vkCmdDispatchIndirect(cmd, args.handle(), offset);
+}
+
 void compute_barrier(VkCommandBuffer cmd) {
   VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
   mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
   mb.srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
-  mb.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+  mb.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT;
   mb.dstAccessMask = VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT |
-                     VK_ACCESS_2_TRANSFER_WRITE_BIT;
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT;
   VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dep.memoryBarrierCount = 1;
   dep.pMemoryBarriers = &mb;

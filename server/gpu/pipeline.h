@@ -82,7 +82,13 @@ void dispatch_layers(VkCommandBuffer cmd, const ComputePipeline& p, const Descri
 void dispatch_1d(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, uint32_t count,
                  const void* push_constants = nullptr, uint32_t push_bytes = 0);
 
-// Full compute-to-compute/transfer barrier between passes.
+// The same with the workgroup counts read from `args` at `offset` (a VkDispatchIndirectCommand an
+// earlier pass wrote; `args` needs k_indirect_usage).
+void dispatch_indirect(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, const Buffer& args,
+                       VkDeviceSize offset = 0);
+
+// Full compute-to-compute/transfer barrier between passes (also makes indirect arguments written
+// by a pass visible to a later dispatch_indirect).
 void compute_barrier(VkCommandBuffer cmd);
 
 }  // namespace strata::gpu

@@ -1,13 +1,14 @@
 #pragma once
-// The disocclusion mask of a frame (pass `disocclusion`): per pixel, 1 when the pixel-centre
-// primary hit of `frame` was not visible from the camera of `previous` (DESIGN.md section 4,
-// `disoccluded_pixels`). The evaluation restricts its error metrics to these pixels (issue 6).
+// The disocclusion mask of a frame (passes `primary` then `disocclusion`): per pixel, 1 when the
+// pixel-centre primary hit of `frame` was not visible from the camera of `previous` (the
+// `disoccluded_pixels` statistic). The evaluation restricts its error metrics to these pixels.
 #include <cstdint>
 #include <memory>
 #include <vector>
 
 #include "gpu/buffer.h"
 #include "gpu/pipeline.h"
+#include "render/pass.h"
 #include "render/scene_gpu.h"
 #include "scene/scene.h"
 
@@ -25,9 +26,12 @@ class DisocclusionMask {
  private:
   const gpu::Context& ctx_;
   const scene::Scene& scene_;
+  void resize(size_t pixels);
   std::unique_ptr<GpuScene> gpu_scene_;
-  std::unique_ptr<gpu::ComputePipeline> pipeline_;
   gpu::Buffer constants_;
+  gpu::Buffer visibility_, mask_;  // per pixel: the pixel-centre hit, and the mask word
+  size_t pixels_ = 0;
+  std::unique_ptr<Pass> primary_, disocclusion_;
 };
 
 }  // namespace strata::render

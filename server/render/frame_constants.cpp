@@ -1,5 +1,7 @@
 #include "render/frame_constants.h"
 
+#include <algorithm>
+
 #include <cmath>
 
 namespace strata::render {
@@ -24,6 +26,10 @@ gpu::GpuCamera make_camera(const scene::Camera& cam, uint32_t width, uint32_t he
 }
 
 // The camera's motion over the frame's shutter relative to its closing camera (GpuShutter).
+uint32_t time_partitions(const scene::FrameState& frame, uint32_t splats_per_frame) {
+  return frame.camera_open ? std::max<uint32_t>(splats_per_frame, 1) : 1u;
+}
+
 gpu::GpuShutter make_shutter(const scene::FrameState& frame) {
   const scene::Camera& close = frame.camera;
   const scene::Camera open = frame.camera_open.value_or(close);
@@ -51,11 +57,12 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   c.seed = setup.seed;
   c.samples_per_pixel = setup.spp;
   c.max_depth = setup.max_depth;
+  c.time_partitions = time_partitions(frame, setup.splats_per_frame);
   c.emitter_count = scene.emitter_count();
   c.total_emitter_power = float(scene.total_emitter_power());
   c.env_select_prob = env_select_prob(setup.env_nee, c.emitter_count);
 
-  // The previous frame (DESIGN.md section 3, session state): the one the scene's previous slot
+  // The previous frame (docs/ARCHITECTURE.md, State, session state): the one the scene's previous slot
   // holds, at the same resolution (a session's image size is fixed). After the first update that
   // is this frame itself, so the fields are consistent even where HISTORY_VALID is not set.
   const scene::FrameState& prev = scene.previous_frame();
@@ -68,7 +75,6 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   if (scene.history_valid()) {
     c.history_flags = gpu::HISTORY_VALID;
     if (scene.moved_since_previous()) c.history_flags |= gpu::HISTORY_SCENE_MOVED;
-    if (!(prev.camera == frame.camera) || frame.camera_open) c.history_flags |= gpu::HISTORY_CAMERA_MOVED;
   }
   return c;
 }

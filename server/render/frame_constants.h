@@ -15,7 +15,13 @@ struct FrameSetup {
   uint32_t spp = 1;
   uint32_t max_depth = 16;
   bool env_nee = false;  // the environment is sampled by next-event estimation
+  uint32_t splats_per_frame = 1;  // restir-splat*: K over an open shutter
 };
+
+// K time partitions of a frame (RS-main Eq. 19): splats_per_frame when the shutter is open (the
+// camera moves over it), else 1. The splat stage dispatches K and the passes read the same K from
+// GpuFrameConstants::time_partitions.
+uint32_t time_partitions(const scene::FrameState& frame, uint32_t splats_per_frame);
 
 // The camera at the frame's instant in its render space (at the origin), for a w x h image.
 gpu::GpuCamera make_camera(const scene::Camera& cam, uint32_t width, uint32_t height);

@@ -1,22 +1,17 @@
-// The method registry: the name a session or `stratad render` asks for, to its implementation.
-#include <stdexcept>
-
+// Method construction from the method table's row: `pt` is the path tracer, every reuse method
+// is a RestirMethod composing the row's stages.
+#include "render/method_table.h"
 #include "render/path_tracer.h"
-#include "render/restir_gather.h"
 #include "render/renderer.h"
+#include "render/restir/restir_method.h"
 
 namespace strata::render {
 
 std::unique_ptr<Method> make_method(const RenderSettings& settings, const SharedResources& shared) {
-  if (settings.method == "pt")
+  const MethodSpec& spec = method_spec(settings.method);
+  if (!spec.reuse)
     return std::make_unique<PathTracer>(shared, settings.width, settings.height, settings.spp, settings.samples_per_dispatch);
-  if (settings.method == "restir-gather" || settings.method == "restir-di" || settings.method == "restir-splat" ||
-      settings.method == "restir-splat-backup") {
-    RenderSettings s = settings;
-    s.restir.direct_lighting = settings.method == "restir-di" || settings.restir.direct_lighting;
-    return std::make_unique<RestirGather>(shared, s);
-  }
-  throw std::invalid_argument("method = '" + settings.method + "' has no implementation");
+  return std::make_unique<RestirMethod>(shared, settings, spec);
 }
 
 }  // namespace strata::render

@@ -2,7 +2,7 @@
 // A rendering method records its passes into a frame after the scene update. The Renderer owns
 // what every method shares (the scene on the device, frame constants, counters, the radiance
 // accumulation buffer, the pass timer); a method owns its pipelines and per-session state, and
-// allocates nothing that it does not use (DESIGN.md section 2).
+// allocates nothing that it does not use (docs/ARCHITECTURE.md).
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -40,9 +40,11 @@ struct MethodFrame {
 class Method {
  public:
   virtual ~Method() = default;
+  // Timed passes (PassTimer begin/end pairs) it records per frame at most.
+  virtual uint32_t timed_passes() const = 0;
   // Records this frame's passes, each inside timer.begin/end, adding radiance to `accum`.
   virtual void record(VkCommandBuffer cmd, gpu::PassTimer& timer, const MethodFrame& f) = 0;
-  // Which passes of DESIGN.md section 2 ran in the last recorded frame, and why others did not.
+  // Which passes ran in the last recorded frame, and why others did not.
   virtual std::vector<PassDecision> decisions() const = 0;
   // Device memory the method itself holds, by buffer group.
   virtual std::map<std::string, uint64_t> memory_bytes() const = 0;
@@ -53,6 +55,7 @@ class Method {
   }
 };
 
+// The implementation of settings.method's row of the method table (method_table.h).
 std::unique_ptr<Method> make_method(const RenderSettings& settings, const SharedResources& shared);
 
 }  // namespace strata::render

@@ -9,6 +9,7 @@ class PathTracer : public Method {
  public:
   PathTracer(const SharedResources& shared, uint32_t width, uint32_t height, uint32_t spp, uint32_t samples_per_dispatch);
   ~PathTracer() override;
+  uint32_t timed_passes() const override { return 1; }
   void record(VkCommandBuffer cmd, gpu::PassTimer& timer, const MethodFrame& f) override;
   std::vector<PassDecision> decisions() const override;
   std::map<std::string, uint64_t> memory_bytes() const override { return {}; }

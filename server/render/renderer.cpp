@@ -2,14 +2,24 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "render/frame_constants.h"
+#include "render/method_table.h"
+#include "restir/restir_limits.h"
 
 namespace strata::render {
 namespace {
 
 void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
+}
+
+// 1000 as "1000", 1.5 as "1.5".
+std::string format_limit(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
 }
 
 }  // namespace
@@ -27,50 +37,48 @@ void RenderSettings::validate() const {
   require(in(max_depth, 1, RenderLimits::max_depth),
           "max_depth = " + std::to_string(max_depth) + " is outside [1, " + std::to_string(RenderLimits::max_depth) + "]");
   require(in(samples_per_dispatch, 1, 4096), "samples_per_dispatch = " + std::to_string(samples_per_dispatch) + " is outside [1, 4096]");
-  if (method != "pt") {
+  const MethodSpec& spec = method_spec(method);
+  if (spec.reuse) {
     require(spp == 1, "spp = " + std::to_string(spp) + " but method " + method +
                           " keeps one reservoir per pixel and shades one sample per frame; use restir.initial_candidates "
                           "for more candidates per frame (spp must be 1)");
     restir.validate();
   }
-  auto methods = available_methods();
-  if (std::find(methods.begin(), methods.end(), method) == methods.end()) {
-    std::string list;
-    for (const auto& m : methods) list += (list.empty() ? "" : ", ") + m;
-    throw std::invalid_argument("method = '" + method + "' is not available; available: " + list);
-  }
 }
 
 void RestirOptions::validate() const {
+  using namespace gpu;  // the ranges of shaders/restir/restir_limits.h
+  auto range = [](auto lo, auto hi) { return "[" + format_limit(lo) + ", " + format_limit(hi) + "]"; };
   require(shift == "reconnection" || shift == "hybrid", "restir.shift = '" + shift + "' is not one of: reconnection, hybrid");
   require(mis == "balance" || mis == "pairwise", "restir.mis = '" + mis + "' is not one of: balance, pairwise");
-  require(std::isfinite(confidence_cap) && confidence_cap >= 1.0f && confidence_cap <= 1000.0f,
-          "restir.confidence_cap = " + std::to_string(confidence_cap) + " is outside [1, 1000]");
-  require(spatial_neighbors <= 8, "restir.spatial_neighbors = " + std::to_string(spatial_neighbors) + " is outside [0, 8]");
-  require(std::isfinite(spatial_radius) && spatial_radius >= 1.0f && spatial_radius <= 256.0f,
-          "restir.spatial_radius = " + std::to_string(spatial_radius) + " is outside [1, 256] pixels");
-  require(initial_candidates >= 1 && initial_candidates <= 64,
-          "restir.initial_candidates = " + std::to_string(initial_candidates) + " is outside [1, 64]");
-  require(light_candidates >= 1 && light_candidates <= 32,
-          "restir.light_candidates = " + std::to_string(light_candidates) + " is outside [1, 32]");
-  require(splats_per_frame >= 1 && splats_per_frame <= 64,
-          "restir.splats_per_frame = " + std::to_string(splats_per_frame) + " is outside [1, 64]");
+  require(std::isfinite(confidence_cap) && confidence_cap >= RESTIR_MIN_CONFIDENCE_CAP && confidence_cap <= RESTIR_MAX_CONFIDENCE_CAP,
+          "restir.confidence_cap = " + std::to_string(confidence_cap) + " is outside " +
+              range(RESTIR_MIN_CONFIDENCE_CAP, RESTIR_MAX_CONFIDENCE_CAP));
+  require(spatial_neighbors <= RESTIR_MAX_SPATIAL_NEIGHBORS,
+          "restir.spatial_neighbors = " + std::to_string(spatial_neighbors) + " is outside " + range(0u, RESTIR_MAX_SPATIAL_NEIGHBORS));
+  require(std::isfinite(spatial_radius) && spatial_radius >= RESTIR_MIN_SPATIAL_RADIUS && spatial_radius <= RESTIR_MAX_SPATIAL_RADIUS,
+          "restir.spatial_radius = " + std::to_string(spatial_radius) + " is outside " +
+              range(RESTIR_MIN_SPATIAL_RADIUS, RESTIR_MAX_SPATIAL_RADIUS) + " pixels");
+  require(initial_candidates >= 1 && initial_candidates <= RESTIR_MAX_INITIAL_CANDIDATES,
+          "restir.initial_candidates = " + std::to_string(initial_candidates) + " is outside " +
+              range(1u, RESTIR_MAX_INITIAL_CANDIDATES));
+  require(light_candidates >= 1 && light_candidates <= RESTIR_MAX_LIGHT_CANDIDATES,
+          "restir.light_candidates = " + std::to_string(light_candidates) + " is outside " + range(1u, RESTIR_MAX_LIGHT_CANDIDATES));
+  require(splats_per_frame >= 1 && splats_per_frame <= RESTIR_MAX_SPLATS_PER_FRAME,
+          "restir.splats_per_frame = " + std::to_string(splats_per_frame) + " is outside " + range(1u, RESTIR_MAX_SPLATS_PER_FRAME));
 }
-
-std::vector<std::string> available_methods() { return {"pt", "restir-gather", "restir-di", "restir-splat", "restir-splat-backup"}; }
-
 
 Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSettings settings)
     : ctx_(ctx), settings_(std::move(settings)) {
   settings_.validate();
   // Temporal reuse needs the previous frame's TLAS and instances on the device; `pt` keeps none.
-  scene_ = std::make_unique<GpuScene>(ctx, scene, /*keep_history=*/settings_.method != "pt");
+  scene_ = std::make_unique<GpuScene>(ctx, scene, /*keep_history=*/method_spec(settings_.method).reuse);
   size_t pixels = size_t(settings_.width) * settings_.height;
   constants_ = gpu::Buffer(ctx, sizeof(gpu::GpuFrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "frame constants");
   counters_ = gpu::Buffer(ctx, sizeof(uint32_t) * gpu::COUNTER_COUNT, gpu::k_storage_usage, gpu::Memory::Device, "counters");
   accum_ = gpu::Buffer(ctx, sizeof(glm::vec4) * pixels, gpu::k_storage_usage, gpu::Memory::Device, "accumulation");
-  timer_ = std::make_unique<gpu::PassTimer>(ctx, 8);
   method_ = make_method(settings_, SharedResources{ctx, *scene_, constants_, counters_, accum_});
+  timer_ = std::make_unique<gpu::PassTimer>(ctx, 1 + method_->timed_passes());  // "update", then the method's
 }
 
 Renderer::~Renderer() = default;
@@ -110,8 +118,8 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
     gpu::compute_barrier(cmd);
     timer_->end(cmd);
 
-    FrameSetup setup{settings_.width, settings_.height, frame_index, settings_.seed, settings_.spp, settings_.max_depth,
-                     env_nee};
+    FrameSetup setup{settings_.width, settings_.height, frame_index,       settings_.seed,
+                     settings_.spp,   settings_.max_depth, env_nee, settings_.restir.splats_per_frame};
     gpu::GpuFrameConstants c = make_frame_constants(frame, sc.environment, *scene_, setup);
     constants_.upload(&c, sizeof c);
 
@@ -136,6 +144,7 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
   auto counters = counters_.download_as<uint32_t>(gpu::COUNTER_COUNT);
   FrameStats& s = r.stats;
   s.frame = frame_index;
+  s.pixels = uint64_t(settings_.width) * settings_.height;
   s.pass_ms = timer_->read();
   for (const auto& p : s.pass_ms) s.gpu_ms_total += p.ms;
   s.rays_traced = {{"primary", counters[gpu::COUNTER_RAYS_PRIMARY]},

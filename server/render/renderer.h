@@ -12,6 +12,7 @@
 #include "image/image.h"
 #include "render/frame_stats.h"
 #include "render/method.h"
+#include "render/method_table.h"
 #include "render/scene_gpu.h"
 
 namespace strata::render {
@@ -25,7 +26,7 @@ struct RenderLimits {
   static constexpr uint32_t max_depth = 256;
 };
 
-// Options of the ReSTIR methods (DESIGN.md section 2); `pt` ignores them.
+// Options of the ReSTIR methods (docs/ARCHITECTURE.md, Methods); `pt` ignores them.
 struct RestirOptions {
   std::string shift = "hybrid";      // reconnection | hybrid (random replay until a reconnectable vertex)
   std::string mis = "pairwise";      // balance | pairwise (spatial reuse; the temporal pair is the same for both)
@@ -53,8 +54,6 @@ struct RenderSettings {
   RestirOptions restir;
   void validate() const;
 };
-
-std::vector<std::string> available_methods();
 
 struct FrameResult {
   image::Image image;  // mean radiance per pixel over every sample accumulated so far

@@ -27,11 +27,13 @@ GpuScene::GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep
   size_t capacity = 0;
   for (const auto& inst : scene.instances) {
     size_t most = 0;
+    instance_emits_.push_back(false);
     for (uint32_t mesh : inst.lod_meshes) {
       size_t n = 0;
       for (const auto& p : scene.meshes[mesh].primitives)
         if (glm::any(glm::greaterThan(scene.materials[p.material].emission, glm::vec3(0.0f)))) n += p.triangle_count();
       most = std::max(most, n);
+      if (n > 0) instance_emits_.back() = true;
     }
     capacity += most;
   }
@@ -87,13 +89,22 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
   glm::dvec3 origin(frame.camera.position);
   std::vector<gpu::GpuInstance> records;
   std::vector<VkAccelerationStructureInstanceKHR> tlas_instances;
+  changes_.assign(scene_.instances.size(), 0u);
   for (size_t i = 0; i < scene_.instances.size(); ++i) {
     uint32_t mesh = scene_.instances[i].lod_meshes[frame.lods[i]];
     glm::mat4 m = object_to_render(frame.transforms[i], origin);
     glm::mat3 upper(m);
     bool mirrored = glm::determinant(upper) < 0.0f;
     glm::mat4 normal_matrix(glm::transpose(glm::inverse(upper)));
-    records.push_back({m, normal_matrix, mesh_primitive_base_[mesh], frame.lods[i], mesh, mirrored ? 1u : 0u});
+    uint32_t changes = 0;
+    if (frames_ > 0) {
+      if (frame.transforms[i] != current_.transforms[i]) changes |= gpu::INSTANCE_CHANGED_TRANSFORM;
+      if (frame.lods[i] != current_.lods[i]) changes |= gpu::INSTANCE_CHANGED_LOD;
+      if (changes && instance_emits_[i]) changes |= gpu::INSTANCE_CHANGED_EMISSION;
+    }
+    changes_[i] = changes;
+    records.push_back({m, normal_matrix, mesh_primitive_base_[mesh], frame.lods[i], mesh,
+                       (mirrored ? gpu::INSTANCE_FLAG_MIRRORED : 0u) | changes});
     VkAccelerationStructureInstanceKHR vi{};
     vi.transform = gpu::to_vk_transform(glm::value_ptr(m));
     vi.instanceCustomIndex = uint32_t(i) & 0xFFFFFFu;  // 24 bits; LoadLimits keeps instances far below
@@ -109,7 +120,7 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
     write_slot(cmd, slots_[size_t(1 - parity_)], frame, origin, records, tlas_instances);
     ++seed_builds_;
   }
-  moved_ = frames_ > 0 && (frame.transforms != current_.transforms || frame.lods != current_.lods);
+  moved_ = std::any_of(changes_.begin(), changes_.end(), [](uint32_t c) { return c != 0; });
   if (frames_ > 0) previous_ = std::move(current_);
   else previous_ = frame;
   current_ = frame;

@@ -4,7 +4,8 @@
 // tables, all in render space (world space with the camera at the origin).
 // With history (methods with temporal reuse), the instance records and the TLAS exist twice, in
 // two slots used alternately, so that the previous frame's scene stays on the device, untouched,
-// in the same command buffer as the current one (DESIGN.md section 3, session state).
+// in the same command buffer as the current one (docs/ARCHITECTURE.md, State, session state).
+#include <algorithm>
 #include <memory>
 #include <span>
 #include <vector>
@@ -55,6 +56,12 @@ class GpuScene {
   bool history_valid() const { return keeps_history() && frames_ >= 2; }
   // Some transform or LoD level of the last recorded frame differs from the frame before it.
   bool moved_since_previous() const { return moved_; }
+  // Per instance, what changed between the frame before and the last recorded one
+  // (INSTANCE_CHANGED_*; the same bits are in the device's instance records of that frame).
+  const std::vector<uint32_t>& instance_changes() const { return changes_; }
+  uint32_t changed_instances() const {
+    return uint32_t(std::count_if(changes_.begin(), changes_.end(), [](uint32_t c) { return c != 0; }));
+  }
   // The frame state recorded before the last one (the last one itself after the first update).
   const scene::FrameState& previous_frame() const { return previous_; }
 
@@ -106,6 +113,8 @@ class GpuScene {
   uint32_t seed_builds_ = 0;                    // TLAS builds that seeded the previous slot
   scene::FrameState current_, previous_;
   bool moved_ = false;
+  std::vector<uint32_t> changes_;               // per instance, INSTANCE_CHANGED_* of the last frame
+  std::vector<bool> instance_emits_;            // per instance: some level has emissive triangles
   bool has_emitters_ = false;
   uint32_t emitter_count_ = 0;
   uint32_t emitter_capacity_ = 0;

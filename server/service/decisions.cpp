@@ -1,4 +1,4 @@
-// Session decisions: for the method, every option of DESIGN.md section 2 and the path tracer's
+// Session decisions: for the method (its method-table row), every option and the path tracer's
 // features, what was requested, what the session uses, whether it applies, and why.
 #include <algorithm>
 
@@ -23,18 +23,15 @@ std::string u(uint32_t v) { return std::to_string(v); }
 
 }  // namespace
 
-std::vector<v1::Decision> decide(const MethodTraits& method, const v1::RenderOptions& req, const v1::RenderOptions& eff,
+std::vector<v1::Decision> decide(const render::MethodSpec& method, const v1::RenderOptions& req, const v1::RenderOptions& eff,
                                  const std::vector<v1::ImageEncoding>& encodings, const v1::SceneAnalysis& scene) {
   std::vector<v1::Decision> out;
   const std::string m = method.name;
   const std::string no_reuse = "method " + m + " has no reuse; used by the restir-* methods";
   auto asked = [](bool has, const std::string& value) { return has ? value : std::string(); };
 
-  const bool di = m == "restir-di";
-  std::string method_reason = "reference path tracer: next-event estimation and MIS, no reuse";
-  if (di) method_reason = "ReSTIR DI: resampled direct lighting over one-bounce paths (camera, first hit, light)";
-  else if (method.reuse) method_reason = "ReSTIR path tracing with reuse";
-  out.push_back(make("method", m, m, true, method_reason));
+  const bool di = method.direct_lighting;
+  out.push_back(make("method", m, m, true, method.summary));
   out.push_back(make("spp", asked(req.has_spp(), u(req.spp())), u(eff.spp()), true,
                      method.reuse ? "one reservoir per pixel, shaded once per frame (spp must be 1)" : "samples per pixel per frame"));
   out.push_back(make("max_depth", asked(req.has_max_depth(), u(req.max_depth())), u(eff.max_depth()), true,
@@ -50,7 +47,8 @@ std::vector<v1::Decision> decide(const MethodTraits& method, const v1::RenderOpt
                                                       : "spatial reuse is off (spatial_neighbors = 0)";
   out.push_back(make("temporal_reuse", asked(req.has_temporal_reuse(), on_off(req.temporal_reuse())),
                      on_off(eff.temporal_reuse()), method.reuse,
-                     method.reuse ? (eff.temporal_reuse() ? "the previous frame's reservoirs, by backprojection"
+                     method.reuse ? (eff.temporal_reuse() ? (method.splatting ? "the previous frame's reservoirs, splatted forward"
+                                                                              : "the previous frame's reservoirs, by backprojection")
                                                           : "requested off: no temporal pass")
                                   : no_reuse));
   out.push_back(make("spatial_reuse", asked(req.has_spatial_reuse(), on_off(req.spatial_reuse())),
@@ -92,22 +90,16 @@ std::vector<v1::Decision> decide(const MethodTraits& method, const v1::RenderOpt
     const auto mode = eff.lod_mapping();
     const std::string requested = asked(req.has_lod_mapping(), lod_mapping_name(req.lod_mapping()));
     const std::string groups = std::to_string(scene.lod_groups()) + " instance(s) with LoD levels";
-    std::string value, reason;
-    if (!method.reuse) {
-      value = "off";
-      reason = no_reuse + " (the scene has " + groups + ")";
-    } else if (mode == v1::LOD_MAPPING_AUTO) {
-      value = scene.lod_groups() > 0 ? "uv" : "off";
-      reason = "auto: the scene has " + groups;
-    } else {
-      value = lod_mapping_name(mode);
-      reason = "requested; the scene has " + groups;
-    }
-    out.push_back(make("lod_mapping", requested, value, method.reuse, reason));
+    // No method maps vertices across LoD levels yet (the LOD paper's UV mapping belongs in the
+    // surface resolver): a switch restarts the history of the switched instance, whatever is asked.
+    std::string reason = !method.reuse ? no_reuse + " (the scene has " + groups + ")"
+                         : "no LoD mapping is implemented yet: a LoD switch restarts the switched instance's history (the "
+                           "scene has " + groups + (mode == v1::LOD_MAPPING_OFF ? ")" : "; " + lod_mapping_name(mode) + " requested)");
+    out.push_back(make("lod_mapping", requested, "off", false, reason));
   }
   {
     const std::string requested = asked(req.has_layers(), req.layers() == 0 ? "auto" : u(req.layers()));
-    std::string value = "1", reason = "method " + m + " has no pixel layers; used by restir-multilayer";
+    std::string value = "1", reason = "method " + m + " has no pixel layers; used by multi-layer methods";
     if (method.layers) {
       value = eff.layers() == 0 ? "auto" : u(eff.layers());
       reason = eff.layers() == 0 ? "auto: chosen per frame from the depth complexity" : "requested";

@@ -14,7 +14,7 @@ struct ServiceError : std::runtime_error {
 };
 
 [[noreturn]] inline void fail(grpc::StatusCode code, const std::string& message) { throw ServiceError(code, message); }
-inline void fail_invalid(const std::string& message) { fail(grpc::StatusCode::INVALID_ARGUMENT, message); }
+[[noreturn]] inline void fail_invalid(const std::string& message) { fail(grpc::StatusCode::INVALID_ARGUMENT, message); }
 
 // ServiceError keeps its code; scene and image input errors and std::invalid_argument are
 // INVALID_ARGUMENT; GPU errors and anything else are INTERNAL (with the message).

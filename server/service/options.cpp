@@ -3,18 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/method_table.h"
 #include "render/renderer.h"
+#include "restir/restir_limits.h"
 #include "service/errors.h"
 #include "service/input_checks.h"
 
 namespace strata::service {
 namespace {
-
-std::string joined(const std::vector<std::string>& items) {
-  std::string s;
-  for (const auto& i : items) s += (s.empty() ? "" : ", ") + i;
-  return s;
-}
 
 void check_range(bool has, uint64_t v, uint64_t lo, uint64_t hi, const std::string& field, const std::string& limit = "") {
   if (has && (v < lo || v > hi))
@@ -34,31 +30,11 @@ void check_enum(bool has, int v, bool (*valid)(int), const std::string& field, c
 
 }  // namespace
 
-const std::vector<MethodTraits>& known_methods() {
-  static const std::vector<MethodTraits> methods = {
-      {"pt", false, false, false},
-      {"restir-gather", true, false, false},
-      {"restir-di", true, false, false},
-      {"restir-splat", true, true, false},
-      {"restir-splat-backup", true, true, false},
-      {"restir-multilayer", true, true, true},
-  };
-  return methods;
-}
-
-const MethodTraits& check_method(const std::string& requested, const std::string& field) {
-  const std::string name = requested.empty() ? "pt" : requested;
-  const auto available = render::available_methods();
-  const auto& methods = known_methods();
-  auto it = std::find_if(methods.begin(), methods.end(), [&](const MethodTraits& m) { return m.name == name; });
-  if (it == methods.end()) {
-    std::vector<std::string> names;
-    for (const auto& m : methods) names.push_back(m.name);
-    fail_invalid(field + " = '" + name + "' is not a method; methods: " + joined(names) + "; available: " + joined(available));
-  }
-  if (std::find(available.begin(), available.end(), name) == available.end())
-    fail_invalid(field + " '" + name + "' is not available yet; available: " + joined(available));
-  return *it;
+const render::MethodSpec& check_method(const std::string& requested, const std::string& field) {
+  const std::string name = requested.empty() ? render::k_default_method : requested;
+  for (const auto& m : render::method_table())
+    if (name == m.name) return m;
+  fail_invalid(field + " = '" + name + "' is not a method; methods: " + render::method_names());
 }
 
 void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, const std::string& field) {
@@ -70,17 +46,19 @@ void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, cons
   check_enum(o.has_lod_mapping(), o.lod_mapping(), &v1::LodMapping_IsValid, p + "lod_mapping",
                              "LOD_MAPPING_AUTO, LOD_MAPPING_OFF, LOD_MAPPING_UV");
   check_range(o.has_layers(), o.layers(), 0, 8, p + "layers", "0 = auto");
-  // The ranges of render::RestirOptions::validate.
-  check_float(o.has_confidence_cap(), o.confidence_cap(), 1.0f, 1000.0f, p + "confidence_cap");
-  check_range(o.has_spatial_neighbors(), o.spatial_neighbors(), 0, 8, p + "spatial_neighbors");
-  check_float(o.has_spatial_radius(), o.spatial_radius(), 1.0f, 256.0f, p + "spatial_radius", "pixels");
-  check_range(o.has_initial_candidates(), o.initial_candidates(), 1, 64, p + "initial_candidates");
-  check_range(o.has_light_candidates(), o.light_candidates(), 1, 32, p + "light_candidates");
-  check_range(o.has_splats_per_frame(), o.splats_per_frame(), 1, 64, p + "splats_per_frame");
+  // The ranges of shaders/restir/restir_limits.h, which render::RestirOptions::validate checks too.
+  using namespace gpu;
+  check_float(o.has_confidence_cap(), o.confidence_cap(), RESTIR_MIN_CONFIDENCE_CAP, RESTIR_MAX_CONFIDENCE_CAP, p + "confidence_cap");
+  check_range(o.has_spatial_neighbors(), o.spatial_neighbors(), 0, RESTIR_MAX_SPATIAL_NEIGHBORS, p + "spatial_neighbors");
+  check_float(o.has_spatial_radius(), o.spatial_radius(), RESTIR_MIN_SPATIAL_RADIUS, RESTIR_MAX_SPATIAL_RADIUS, p + "spatial_radius",
+              "pixels");
+  check_range(o.has_initial_candidates(), o.initial_candidates(), 1, RESTIR_MAX_INITIAL_CANDIDATES, p + "initial_candidates");
+  check_range(o.has_light_candidates(), o.light_candidates(), 1, RESTIR_MAX_LIGHT_CANDIDATES, p + "light_candidates");
+  check_range(o.has_splats_per_frame(), o.splats_per_frame(), 1, RESTIR_MAX_SPLATS_PER_FRAME, p + "splats_per_frame");
   check_float(o.has_exposure(), o.exposure(), -64.0f, 64.0f, p + "exposure");
 }
 
-void check_method_options(const MethodTraits& method, const v1::RenderOptions& o, const std::string& field) {
+void check_method_options(const render::MethodSpec& method, const v1::RenderOptions& o, const std::string& field) {
   if (method.reuse && o.has_spp() && o.spp() != 1)
     fail_invalid(field + ".spp = " + std::to_string(o.spp()) + " but method " + method.name +
                  " keeps one reservoir per pixel and renders 1 sample per pixel per frame (spp must be 1); use " + field +

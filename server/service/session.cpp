@@ -234,7 +234,7 @@ RenderedFrame Session::render(PendingInput input) {
   return f;
 }
 
-const MethodTraits& Session::method() const {
+const render::MethodSpec& Session::method() const {
   std::lock_guard lock(mu_);
   return *spec_.method;
 }

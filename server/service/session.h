@@ -26,7 +26,7 @@ namespace strata::service {
 
 // What CreateSession asked for, checked.
 struct SessionSpec {
-  const MethodTraits* method = nullptr;
+  const render::MethodSpec* method = nullptr;
   v1::RenderOptions requested;  // as the client sent them
   v1::RenderOptions options;    // effective: every field set
   uint32_t width = 0, height = 0, seed = 0;
@@ -73,7 +73,7 @@ class Session {
 
   const std::string& name() const { return name_; }
   const scene::Scene& scene() const { return *scene_; }
-  const MethodTraits& method() const;
+  const render::MethodSpec& method() const;
   v1::Session describe(const ServiceConfig& config) const;
 
   // One stream at a time: false when another one is attached.

@@ -28,6 +28,8 @@
 #define BINDING_SPLAT_COUNT 22     // per current pixel: splats that landed there (atomic counters)
 #define BINDING_SPLAT_OFFSETS 23   // per current pixel + 1: exclusive prefix sum of the counts
 #define BINDING_SPLAT_LIST 24      // the splat records, grouped by the current pixel they landed in
+#define BINDING_PRIMARY 25         // the visibility buffer (GpuPrimaryHit per pixel) of this frame
+#define BINDING_PRIMARY_PREV 26    // ... and of the previous frame
 
 // Specialization constants of the passes (constant_id).
 #define SPEC_THIN_LENS 0

@@ -33,6 +33,16 @@ void primary_ray(GpuCamera cam, vec2 pixel, vec2 jitter, vec2 lens, out vec3 ori
   }
 }
 
+// The pinhole projection of render-space point p by camera `cam` at the origin (a frame's camera at
+// its instant): x and y in [-1, 1] inside the image (right, up), z the depth along the view
+// direction (x and y are meaningless unless z > 0). Backprojection into the previous frame.
+vec3 camera_ndc(GpuCamera cam, vec3 p) {
+  float z = dot(p, cam.forward.xyz);
+  float x = dot(p, cam.right.xyz) / (z * dot(cam.right.xyz, cam.right.xyz));
+  float y = dot(p, cam.up.xyz) / (z * dot(cam.up.xyz, cam.up.xyz));
+  return vec3(x, y, z);
+}
+
 // The frame's camera at its instant (where its shutter closes).
 GpuCamera camera_in(bool prev) {
   if (prev) return u_frame.prev_camera;  // (if, not ?: — see instance_in in scene_bridge.glsl)

@@ -40,8 +40,8 @@ struct GpuFrameConstants {
   float total_emitter_power;
   float env_select_prob;     // probability that NEE picks the environment instead of an emitter
   uint history_flags;        // HISTORY_*: what the previous frame's state (below) may be used for
-  uint pad1;
-  // The previous frame (DESIGN.md section 3, session state), in the previous frame's render space:
+  uint time_partitions;      // K of multi-splatting over this frame's shutter (RS-main Eq. 19; 1 when it is an instant)
+  // The previous frame (docs/ARCHITECTURE.md, State, session state), in the previous frame's render space:
   // its camera, and its light-selection totals so that target functions and MIS weights of
   // reverse shifts are evaluated exactly as that frame's passes evaluated them.
   GpuCamera prev_camera;
@@ -54,8 +54,7 @@ struct GpuFrameConstants {
 
 // history_flags bits.
 CONST_DEF uint HISTORY_VALID = 1u;         // a previous frame exists (TLAS, instances and camera bound)
-CONST_DEF uint HISTORY_SCENE_MOVED = 2u;   // some instance transform or LoD level changed since then
-CONST_DEF uint HISTORY_CAMERA_MOVED = 4u;  // the camera changed since then
+CONST_DEF uint HISTORY_SCENE_MOVED = 2u;   // some instance changed since then (INSTANCE_CHANGED_* says which)
 
 // Push constants of a dispatch: a frame's samples may be split over several dispatches.
 struct GpuDispatchConstants {
@@ -84,6 +83,8 @@ CONST_DEF uint COUNTER_SPLATS_MAX = 15u;            // restir-splat: most splats
 CONST_DEF uint COUNTER_TEMPORAL_FAIL = 16u;         // + reason, SHIFT_REASONS slots
 CONST_DEF uint COUNTER_SPATIAL_FAIL = 24u;          // + reason
 CONST_DEF uint COUNTER_SPLAT_BACKUP_SELECTED = 32u; // restir-splat-backup: pixels whose output is the backup sample
+CONST_DEF uint COUNTER_SPLATS_OFFSCREEN = 33u;      // restir-splat: forward splats that projected outside the image
+CONST_DEF uint COUNTER_SPLATS_OCCLUDED = 34u;       // restir-splat: forward splats whose primary hit is not visible now
 CONST_DEF uint COUNTER_COUNT = 40u;
 
 STRATA_NAMESPACE_END

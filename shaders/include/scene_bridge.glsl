@@ -6,6 +6,8 @@
 
 #include "include/bindings.h"
 #include "include/scene_data.h"
+#include "restir/primary_data.h"
+#include "restir/reservoir.h"
 #include "sampling/ray_offset.h"
 
 layout(set = 0, binding = BINDING_TLAS) uniform accelerationStructureEXT u_tlas;
@@ -14,8 +16,6 @@ layout(set = 0, binding = BINDING_INDICES, std430) readonly buffer Indices { uin
 layout(set = 0, binding = BINDING_PRIMITIVES, std430) readonly buffer Primitives { GpuPrimitive b_primitives[]; };
 layout(set = 0, binding = BINDING_INSTANCES, std430) readonly buffer Instances { GpuInstance b_instances[]; };
 layout(set = 0, binding = BINDING_MATERIALS, std430) readonly buffer Materials { GpuMaterial b_materials[]; };
-
-CONST_DEF uint INSTANCE_FLAG_MIRRORED = 1u;  // negative determinant: front faces wind clockwise
 
 // What a ray query reports: enough to reload the hit later (a path sample stores exactly this).
 struct RayHit {
@@ -140,5 +140,58 @@ bool trace_visible_in(bool prev, vec3 origin, vec3 dir, float t_max) { return tr
 #endif
 
 SurfaceHit load_hit_in(bool prev, RayHit h) { return load_hit_with(instance_in(prev, h.instance), h); }
+
+// What changed about instance i between the previous frame and this one (INSTANCE_CHANGED_*).
+uint instance_changes(uint i) { return b_instances[i].flags & INSTANCE_CHANGED; }
+
+// The surface resolver (docs/ARCHITECTURE.md, "Surface resolver"): the one place where a stored
+// surface point (a primary hit, a reconnection vertex; later a representative hit) becomes a hit
+// in the current (prev = false) or previous frame. The point is stored in object space (instance,
+// primitive, triangle, barycentrics at a LoD level), so it moves with its object's transform in
+// that frame. When the instance shows another LoD level there, the point has no image yet (the LOD
+// paper's vertex mapping belongs here, and nowhere else) and the resolution fails.
+CONST_DEF uint RESOLVE_OK = 0u;
+CONST_DEF uint RESOLVE_NONE = 1u;  // no surface stored, or an instance the scene does not have
+CONST_DEF uint RESOLVE_LOD = 2u;   // the instance shows another LoD level in the target frame
+
+struct ResolvedSurface {
+  uint reason;       // RESOLVE_*
+  RayHit ray;        // the point as a ray query reports it (t = 0)
+  SurfaceHit hit;    // loaded in the target frame (with instance 0 when the resolution failed)
+  uint lod;          // the instance's level in the target frame
+  float jacobian;    // |d tau / dx| of the mapping into the target frame's parametrisation: 1 while
+                     // the triangle and its barycentrics are kept (area changes are in hit.area)
+};
+
+ResolvedSurface resolve_surface(bool prev, SurfacePoint p) {
+  ResolvedSurface r;
+  r.reason = RESOLVE_OK;
+  r.jacobian = 1.0;
+  bool known = p.instance != SURFACE_NONE && p.instance < uint(b_instances.length());
+  if (!known) r.reason = RESOLVE_NONE;
+  GpuInstance inst = instance_in(prev, known ? p.instance : 0u);
+  r.lod = inst.lod;
+  if (known && inst.lod != p.lod) r.reason = RESOLVE_LOD;
+  // A failed point loads triangle 0 of instance 0: its stored primitive may not exist at the level shown.
+  bool ok = r.reason == RESOLVE_OK;
+  r.ray.t = 0.0;
+  r.ray.instance = ok ? p.instance : 0u;
+  r.ray.geometry = ok ? p.geometry : 0u;
+  r.ray.triangle = ok ? p.triangle : 0u;
+  r.ray.bary = p.bary;
+  r.hit = load_hit_with(ok ? inst : instance_in(prev, 0u), r.ray);
+  return r;
+}
+
+// The surface point of a visibility-buffer entry (restir/primary_data.h).
+SurfacePoint primary_surface(GpuPrimaryHit h) {
+  SurfacePoint p;
+  p.instance = (h.flags & PRIMARY_HIT) != 0u ? h.instance : SURFACE_NONE;
+  p.geometry = h.geometry;
+  p.triangle = h.triangle;
+  p.bary = h.bary;
+  p.lod = h.lod;
+  return p;
+}
 
 #endif

@@ -1,6 +1,6 @@
 // Scene data as the device sees it; one definition for GLSL (std430) and C++.
 // All positions are in render space: world space shifted so that the camera is at the origin
-// (DESIGN.md section 6: positions are camera-relative where precision matters).
+// (docs/ARCHITECTURE.md, Robustness: positions are camera-relative where precision matters).
 #ifndef STRATA_SCENE_DATA_H
 #define STRATA_SCENE_DATA_H
 #include "include/lang.h"
@@ -29,8 +29,17 @@ struct GpuInstance {
   uint primitive_base;
   uint lod;
   uint mesh;
-  uint flags;
+  uint flags;             // INSTANCE_FLAG_* and INSTANCE_CHANGED_*
 };
+
+CONST_DEF uint INSTANCE_FLAG_MIRRORED = 1u;  // negative determinant: front faces wind clockwise
+// Per-instance change tracking: what changed between the previous frame and this one, in this
+// frame's record, so that a shift can ask about exactly the instances it touches. All zero on a
+// session's first frame.
+CONST_DEF uint INSTANCE_CHANGED_TRANSFORM = 2u;  // its object-to-world transform
+CONST_DEF uint INSTANCE_CHANGED_LOD = 4u;        // its LoD level (another mesh, another topology)
+CONST_DEF uint INSTANCE_CHANGED_EMISSION = 8u;   // it emits and moved or switched level: the light it casts changed
+CONST_DEF uint INSTANCE_CHANGED = 14u;           // any of the above
 
 CONST_DEF uint MATERIAL_DOUBLE_SIDED = 1u;
 

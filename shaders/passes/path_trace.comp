@@ -12,6 +12,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "include/bindings.h"
 #include "include/frame_data.h"
 #include "include/scene_bridge.glsl"
+#include "sampling/russian_roulette.h"
 #include "material/bsdf.h"
 #include "sampling/light_sampling.glsl"
 #include "sampling/mis.h"
@@ -30,8 +31,6 @@ layout(set = 0, binding = BINDING_ACCUM, std430) buffer Accum { vec4 b_accum[]; 
 
 #include "include/camera.glsl"
 
-const float RR_START_DEPTH = 3.0;
-const float RR_MAX_SURVIVAL = 0.95;
 
 uint g_rays_primary = 0u;
 uint g_rays_bounce = 0u;
@@ -121,7 +120,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     origin = x;
 
     if (float(depth) >= RR_START_DEPTH) {
-      float survive = min(max(throughput.r, max(throughput.g, throughput.b)), RR_MAX_SURVIVAL);
+      float survive = rr_survival(throughput);
       if (rng_next_float(rng) >= survive) break;
       throughput /= survive;
     }
@@ -139,7 +138,7 @@ void main() {
   for (uint s = 0u; s < u_dispatch.sample_count; ++s) {
     Rng rng = rng_init(index, u_dispatch.sample_base + s, u_frame.frame_index, u_frame.seed);
     vec3 l = trace_path(vec2(pixel), rng);
-    // DESIGN.md section 6: a non-finite or negative sample never reaches a pixel; it is counted.
+    // docs/ARCHITECTURE.md, Robustness: a non-finite or negative sample never reaches a pixel; it is counted.
     if (any(isnan(l)) || any(isinf(l)) || any(lessThan(l, vec3(0.0)))) {
       rejected++;
       continue;

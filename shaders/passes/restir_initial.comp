@@ -1,5 +1,5 @@
 #version 460
-// Pass `initial` (DESIGN.md section 2; RS-main 3.4): the canonical sample of each pixel by
+// Pass `initial` (docs/ARCHITECTURE.md, Methods; RS-main 3.4): the canonical sample of each pixel by
 // resampled importance sampling over the sub-paths of N_init paths. Each path is the path
 // tracer's (NEE with `light_candidates` samples per vertex, BSDF sampling, power-heuristic MIS);
 // every NEE connection and every emitter or environment hit is one candidate, with resampling
@@ -21,12 +21,11 @@
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 #include "include/scene_bridge.glsl"
+#include "sampling/russian_roulette.h"
 #include "restir/restir_pass.glsl"
 #include "restir/path_space.glsl"
 #include "sampling/light_sampling.glsl"
 
-const float RR_START_DEPTH = 3.0;
-const float RR_MAX_SURVIVAL = 0.95;
 
 uint g_rays = 0u;
 GrisState g_state;
@@ -207,7 +206,7 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
     if (kf == 0u) pdf_replay *= pdf;
     if (kf != 0u && float(i) >= RR_START_DEPTH) {
       vec3 beta = f_prefix / pdf_path;
-      float survive = min(max(beta.r, max(beta.g, beta.b)), RR_MAX_SURVIVAL);
+      float survive = rr_survival(beta);
       if (rng_dim(key, dim_vertex(i) + DIM_RR) >= survive) break;
       pdf_path *= survive;
     }
@@ -218,7 +217,8 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
-  uint index = pixel_index(pixel);
+  uint index = pixel_index(pixel);  // the random streams are per pixel
+  uint domain = domain_of(pixel, 0u);
   g_state = gris_begin();
   g_selected = reservoir_empty();
   g_selected_f = vec3(0.0);
@@ -238,8 +238,8 @@ void main() {
     r.confidence = 1.0;
     f = vec3(0.0);
   }
-  store_output(index, r, f);
-  b_contribution[primary_emission_index(index)] = vec4(g_primary_emission, 0.0);
+  store_output(domain, r, f);
+  b_contribution[primary_emission_index(pixel)] = vec4(g_primary_emission, 0.0);
   if (g_state.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], g_state.rejected);
   atomicAdd(b_counters[COUNTER_RAYS_INITIAL], g_rays);
   atomicAdd(b_counters[COUNTER_PATHS], u_restir.initial_candidates);

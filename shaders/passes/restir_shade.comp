@@ -1,5 +1,5 @@
 #version 460
-// Pass `shade` (DESIGN.md section 2): each pixel's estimate f(Y) W_Y from its final reservoir
+// Pass `shade` (stage shade): each pixel's estimate f(Y) W_Y from its final reservoir
 // (GRIS, RS-main Eq. 5), plus the initial pass's estimate of what the camera rays see directly
 // (paths of one segment, which are not resampled: restir_initial.comp), added to the accumulation
 // buffer as one sample.
@@ -9,6 +9,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 #include "include/bindings.h"
 #include "include/frame_data.h"
+#include "restir/domain.h"
 #include "restir/reservoir.h"
 
 layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
@@ -21,11 +22,12 @@ void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
   uint index = pixel.y * u_frame.width + pixel.x;
-  Reservoir r = unpack_reservoir(b_in[index]);
+  uint domain = domain_index(pixel, 0u, u_frame.width, u_frame.height);  // the front layer is the image
+  Reservoir r = unpack_reservoir(b_in[domain]);
   vec3 l = vec3(0.0);
-  if ((r.y.flags & SAMPLE_VALID) != 0u) l = b_contribution[index].rgb * r.ucw;
+  if ((r.y.flags & SAMPLE_VALID) != 0u) l = b_contribution[domain].rgb * r.ucw;
   l += b_contribution[u_frame.width * u_frame.height + index].rgb;  // restir_pass.glsl, primary_emission_index
-  // DESIGN.md section 6: a non-finite or negative estimate never reaches a pixel; it is counted.
+  // A non-finite or negative estimate never reaches a pixel; it is counted.
   if (any(isnan(l)) || any(isinf(l)) || any(lessThan(l, vec3(0.0)))) {
     atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], 1u);
     l = vec3(0.0);

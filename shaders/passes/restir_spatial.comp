@@ -1,5 +1,5 @@
 #version 460
-// Pass `spatial` (DESIGN.md section 2; Lin et al. 2022 section 7): N neighbours in a disk of
+// Pass `spatial` (stage spatial; Lin et al. 2022 section 7): N neighbours in a disk of
 // `spatial_radius` pixels, chosen independently of the samples, are shifted into this pixel and
 // resampled with its own reservoir. MIS is either the generalized balance heuristic over all
 // N + 1 domains (RS-main Eq. 6/7; every candidate is shifted into every other domain: O(N^2)
@@ -12,10 +12,10 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "include/scene_bridge.glsl"
 #include "restir/restir_pass.glsl"
 #include "restir/path_space.glsl"
+#include "restir/restir_limits.h"
 
 layout(set = 0, binding = BINDING_RESERVOIRS_IN, std430) readonly buffer ReservoirsIn { PackedReservoir b_in[]; };
 
-const uint MAX_NEIGHBORS = 8u;
 
 uint g_rays = 0u;
 
@@ -24,22 +24,22 @@ float confidence_of(Reservoir r) { return confidence_capped(r.confidence, u_rest
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
-  uint index = pixel_index(pixel);
+  uint index = domain_of(pixel, 0u);  // spatial reuse is on the front layer
   Reservoir centre = unpack_reservoir(b_in[index]);
   vec3 f_centre = b_contribution[index].rgb;
   bool centre_valid = reservoir_valid(centre);
   float c_c = confidence_of(centre);
 
   // Neighbours: uniform in the disk, rounded to pixels, inside the image and not this pixel.
-  Rng rng = rng_init(index, 0x5A71A1u, u_frame.frame_index, u_frame.seed);
+  Rng rng = rng_init(pixel_index(pixel), 0x5A71A1u, u_frame.frame_index, u_frame.seed);
   uint count = 0u;
-  uint nb[MAX_NEIGHBORS];
+  uint nb[RESTIR_MAX_SPATIAL_NEIGHBORS];
   float c_total = c_c;
-  for (uint j = 0u; j < min(u_restir.spatial_neighbors, MAX_NEIGHBORS); ++j) {
+  for (uint j = 0u; j < min(u_restir.spatial_neighbors, RESTIR_MAX_SPATIAL_NEIGHBORS); ++j) {
     vec2 o = sample_concentric_disk(rng_next_float2(rng)) * u_restir.spatial_radius;
     ivec2 p = ivec2(pixel) + ivec2(round(o));
     if (p.x < 0 || p.y < 0 || p.x >= int(u_frame.width) || p.y >= int(u_frame.height) || p == ivec2(pixel)) continue;
-    nb[count] = pixel_index(uvec2(p));
+    nb[count] = domain_of(uvec2(p), 0u);
     c_total += confidence_of(unpack_reservoir(b_in[nb[count]]));
     count++;
   }
@@ -92,7 +92,7 @@ void main() {
     ShiftResult res;
     res.reason = SHIFT_FAIL_ZERO;
     if (run) {
-      res = shift_path(false, vec2(target % u_frame.width, target / u_frame.width), y, false);
+      res = shift_path(false, vec2(domain_pixel(target, u_frame.width)), y, false);
       g_rays += res.rays;
       atomicAdd(b_counters[COUNTER_SPATIAL_SHIFTS], 1u);
       if (res.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_SPATIAL_FAIL + res.reason], 1u);
@@ -100,7 +100,7 @@ void main() {
     bool ok = run && res.reason == SHIFT_OK;
     if (sub == 0u) {
       p_here = ok ? luminance(res.f) : 0.0;
-      jac = ok ? shift_jacobian(rj.y.density, res.density) : 0.0;
+      jac = ok ? res.jacobian : 0.0;
       yj_here = rj.y;
       yj_here.x1 = res.x1;
       yj_here.density = res.density;
@@ -109,10 +109,10 @@ void main() {
     } else if (!centre_job) {
       // Balance: p-hat of domain l from y'_j (RS-main Eq. 7).
       Reservoir rl = unpack_reservoir(b_in[target]);
-      if (ok) denom += confidence_of(rl) * p_hat_from(luminance(res.f), shift_jacobian(yj_here.density, res.density));
+      if (ok) denom += confidence_of(rl) * p_hat_from(luminance(res.f), res.jacobian);
     }
     if (centre_job) {
-      float from_c = ok ? p_hat_from(luminance(res.f), shift_jacobian(centre.y.density, res.density)) : 0.0;
+      float from_c = ok ? p_hat_from(luminance(res.f), res.jacobian) : 0.0;
       if (pairwise) m_c += mis_pairwise_canonical_term(rj.confidence, from_c, c_c, centre.p_hat, k, c_total);
       else balance_c += rj.confidence * from_c;
       // y'_j is complete: stream it (RS-main Eq. 4, w = m p-hat W |J|).

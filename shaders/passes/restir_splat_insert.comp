@@ -9,6 +9,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 #include "include/bindings.h"
 #include "include/frame_data.h"
+#include "restir/domain.h"
 #include "restir/splat_data.h"
 
 layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
@@ -20,7 +21,8 @@ layout(set = 0, binding = BINDING_SPLAT_LIST, std430) writeonly buffer List { ui
 void main() {
   uvec2 prev_pixel = gl_GlobalInvocationID.xy;
   if (prev_pixel.x >= u_frame.prev_width || prev_pixel.y >= u_frame.prev_height) return;
-  uint record = gl_GlobalInvocationID.z * u_frame.prev_width * u_frame.prev_height + prev_pixel.y * u_frame.prev_width + prev_pixel.x;
+  uint record = gl_GlobalInvocationID.z * u_frame.prev_width * u_frame.prev_height +
+                domain_index(prev_pixel, 0u, u_frame.prev_width, u_frame.prev_height);
   uint j = b_target[record];
   if (j == SPLAT_NONE) return;
   uint slot = b_offsets[j] + atomicAdd(b_count[j], 0xFFFFFFFFu) - 1u;  // count - 1 .. 0

@@ -26,8 +26,8 @@ void main() {
   uvec2 prev_pixel = gl_GlobalInvocationID.xy;
   uint time_partition = gl_GlobalInvocationID.z;
   if (prev_pixel.x >= u_frame.prev_width || prev_pixel.y >= u_frame.prev_height || time_partition >= splat_partitions()) return;
-  uint i = prev_pixel.y * u_frame.prev_width + prev_pixel.x;
-  uint record = time_partition * u_frame.prev_width * u_frame.prev_height + i;
+  uint i = prev_domain_of(prev_pixel, 0u);
+  uint record = time_partition * u_frame.prev_width * u_frame.prev_height + i;  // records: per partition, per previous domain
   b_target[record] = SPLAT_NONE;
   Reservoir x = unpack_reservoir(b_in[i]);
   if (!reservoir_valid(x)) return;
@@ -37,6 +37,8 @@ void main() {
   atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], s.shift.rays);
   if (s.shift.reason != SHIFT_OK) {
     atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + s.shift.reason], 1u);
+    if (!s.projected && s.shift.reason == SHIFT_FAIL_PRIMARY) atomicAdd(b_counters[COUNTER_SPLATS_OFFSCREEN], 1u);
+    if (s.projected && s.shift.reason == SHIFT_FAIL_PRIMARY) atomicAdd(b_counters[COUNTER_SPLATS_OCCLUDED], 1u);
     return;
   }
   Reservoir y = x;  // W, confidence and p-hat_prev of X_i; the sample becomes Y_i
@@ -49,7 +51,7 @@ void main() {
   rec.reservoir = pack_reservoir(y);
   rec.f_jacobian = vec4(s.shift.f, s.jacobian);
   b_splats[record] = rec;
-  uint j = s.pixel.y * u_frame.width + s.pixel.x;
+  uint j = domain_of(s.pixel, 0u);  // the splat's key: the domain it landed in
   b_target[record] = j;
   atomicAdd(b_count[j], 1u);
 }

@@ -28,10 +28,11 @@ layout(set = 0, binding = BINDING_RESERVOIRS_IN, std430) readonly buffer Reservo
 layout(set = 0, binding = BINDING_SPLATS, std430) readonly buffer Splats { SplatRecord b_splats[]; };
 layout(set = 0, binding = BINDING_SPLAT_OFFSETS, std430) readonly buffer Offsets { uint b_offsets[]; };
 layout(set = 0, binding = BINDING_SPLAT_LIST, std430) readonly buffer List { uint b_list[]; };
+layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
 
 float prev_confidence(ivec2 q) {
   if (q.x < 0 || q.y < 0 || q.x >= int(u_frame.prev_width) || q.y >= int(u_frame.prev_height)) return 0.0;
-  return confidence_capped(unpack_reservoir(b_in[uint(q.y) * u_frame.prev_width + uint(q.x)]).confidence, u_restir.confidence_cap);
+  return confidence_capped(unpack_reservoir(b_in[prev_domain_of(uvec2(q), 0u)]).confidence, u_restir.confidence_cap);
 }
 
 // The backprojection of this pixel's centre (its primary hit moved back with its object's previous
@@ -49,14 +50,9 @@ Backprojection backproject_centre(uvec2 pixel) {
   bp.ok = false;
   bp.backup = uvec2(0u);
   bp.confidence = 0.0;
-  vec3 origin;
-  vec3 dir;
-  primary_ray(u_frame.camera, vec2(pixel), vec2(0.5), vec2(0.5), origin, dir);
-  RayHit h;
-  if (!trace_closest(origin, dir, 1e30, h)) return bp;
-  GpuInstance before = instance_in(true, h.instance);
-  if (before.lod != b_instances[h.instance].lod) return bp;
-  vec3 p = load_hit_with(before, h).position;
+  ResolvedSurface before = resolve_surface(true, primary_surface(b_primary[pixel_index(pixel)]));
+  if (before.reason != RESOLVE_OK) return bp;
+  vec3 p = before.hit.position;
   vec2 sub;
   if (!project(u_frame.prev_camera, u_frame.prev_width, u_frame.prev_height, p, vec3(0.0), bp.backup, sub)) return bp;
   bp.ok = true;
@@ -66,13 +62,6 @@ Backprojection backproject_centre(uvec2 pixel) {
   bp.confidence = (1.0 - t.x) * (1.0 - t.y) * prev_confidence(b) + t.x * (1.0 - t.y) * prev_confidence(b + ivec2(1, 0)) +
                   (1.0 - t.x) * t.y * prev_confidence(b + ivec2(0, 1)) + t.x * t.y * prev_confidence(b + ivec2(1, 1));
   return bp;
-}
-
-// a / (a + b + c), 0 when that is not a finite number in [0, 1].
-float mis3(float a, float b, float c) {
-  float d = a + b + c;
-  if (!(d > 0.0) || isinf(d)) return 0.0;
-  return a / d;
 }
 
 // The next splat record that landed in this pixel after record `after` (all of them when `first_pick`):
@@ -98,7 +87,7 @@ void count_shift(ShiftResult r) {
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
-  uint index = pixel_index(pixel);
+  uint index = domain_of(pixel, 0u);
   Reservoir canonical = unpack_reservoir(b_out[index]);
   vec3 f_canonical = b_contribution[index].rgb;
   float c_star = canonical.confidence;
@@ -110,10 +99,10 @@ void main() {
   float alpha = with_backup ? 0.5 : 0.0;
   Backprojection bp = backproject_centre(pixel);
   bool backup_domain = with_backup && bp.ok;
-  Reservoir xb = backup_domain ? unpack_reservoir(b_in[bp.backup.y * u_frame.prev_width + bp.backup.x]) : reservoir_empty();
+  Reservoir xb = backup_domain ? unpack_reservoir(b_in[prev_domain_of(bp.backup, 0u)]) : reservoir_empty();
   float c_b = backup_domain ? alpha * confidence_capped(xb.confidence, u_restir.confidence_cap) : 0.0;
 
-  Rng rng = rng_init(index, 0x5B1A7u, u_frame.frame_index, u_frame.seed);
+  Rng rng = rng_init(pixel_index(pixel), 0x5B1A7u, u_frame.frame_index, u_frame.seed);
   GrisState st = gris_begin();
   Reservoir out_r = canonical;
   vec3 f = f_canonical;
@@ -127,9 +116,7 @@ void main() {
   float from_r = 0.0;       // p-hat_prev(T^-1 Y*) |dT^-1/dY*|
   float c_r = 0.0;
   float from_b_star = 0.0;  // p-hat_prev(T_b^-1 Y*) |dT_b^-1/dY*|
-  ShiftResult yb;
-  yb.reason = SHIFT_FAIL_ZERO;
-  yb.f = vec3(0.0);
+  ShiftResult yb = shift_none(SHIFT_FAIL_ZERO);
   float j_b = 0.0;
   float from_r_b = 0.0;     // p-hat_prev(T^-1 Y^b) |dT^-1/dY^b|
   float c_r_b = 0.0;
@@ -146,7 +133,6 @@ void main() {
     }
     ShiftJob sj;
     sj.ok = false;
-    PathSample base = canonical.y;
     bool run = false;
     if (job == 0u) {
       run = reservoir_valid(canonical);
@@ -156,17 +142,15 @@ void main() {
       if (run) sj = gather_prepare(true, vec2(bp.backup), canonical.y);
     } else if (job == 2u) {
       run = backup_domain && reservoir_valid(xb);
-      base = xb.y;
       if (run) sj = gather_prepare(false, vec2(pixel), xb.y);
     } else if (job == 3u) {
       run = j_b > 0.0;
-      base = xb.y;
-      base.x1 = yb.x1;
-      base.density = yb.density;
-      if (run) sj = splat_prepare(true, base, 0u);
+      PathSample y_b = xb.y;  // Y^b: the backup sample as it was shifted into this pixel
+      y_b.x1 = yb.x1;
+      y_b.density = yb.density;
+      if (run) sj = splat_prepare(true, y_b, 0u);
     } else {
       run = backup_domain;
-      base = y_s.y;
       if (run) sj = gather_prepare(true, vec2(bp.backup), y_s.y);
     }
     ShiftResult r;
@@ -174,7 +158,7 @@ void main() {
     float jac = 0.0;
     if (run) {
       r = run_shift(sj, moved);
-      jac = shift_finish(sj, base, r);
+      jac = shift_finish(sj, r);
       count_shift(r);
     }
     float from = jac > 0.0 ? p_hat_from(luminance(r.f), jac) : 0.0;
@@ -190,10 +174,10 @@ void main() {
       from_r_b = from;
       if (jac > 0.0) c_r_b = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel));
       // The canonical sample (RS-main Eq. 12-13; RS-supp Eq. 21) and the backup (RS-supp Eq. 22).
-      float m_star = mis3(c_star * canonical.p_hat, c_b * from_b_star, c_r * from_r);
+      float m_star = mis_balance_terms(c_star * canonical.p_hat, c_b * from_b_star, c_r * from_r);
       gris_stream(st, m_star * canonical.p_hat * canonical.ucw, canonical.p_hat, c_star, 0u, rng_next_float(rng));
       float p_yb = j_b > 0.0 ? luminance(yb.f) : 0.0;
-      float m_b = j_b > 0.0 ? mis3(c_b * xb.p_hat / j_b, c_star * p_yb, c_r_b * from_r_b) : 0.0;
+      float m_b = j_b > 0.0 ? mis_balance_terms(c_b * xb.p_hat / j_b, c_star * p_yb, c_r_b * from_r_b) : 0.0;
       if (gris_stream(st, m_b * p_yb * xb.ucw * j_b, p_yb, 0.0, 1u, rng_next_float(rng))) {
         out_r = xb;
         out_r.y.x1 = yb.x1;
@@ -205,7 +189,7 @@ void main() {
       vec3 f_y = rec.f_jacobian.xyz;
       float jacobian = rec.f_jacobian.w;
       float p_y = luminance(f_y);
-      float m_s = mis3((1.0 - alpha) * y_s.confidence * y_s.p_hat / jacobian, c_star * p_y, c_b * from);
+      float m_s = mis_balance_terms((1.0 - alpha) * y_s.confidence * y_s.p_hat / jacobian, c_star * p_y, c_b * from);
       if (gris_stream(st, m_s * p_y * y_s.ucw * jacobian, p_y, 0.0, s + 2u, rng_next_float(rng))) {
         out_r = y_s;
         f = f_y;

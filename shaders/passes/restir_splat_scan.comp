@@ -1,5 +1,5 @@
 #version 460
-// Pass `splat_scan` (restir-splat; RS-supp 3.1 step 2): the exclusive prefix sum of the per-pixel
+// Pass `splat_scan` (restir-splat; RS-supp 3.1 step 2): the exclusive prefix sum of the per-domain
 // splat counts, offsets[j] = sum_{l<j} count[l], offsets[N] = the number of splats. One workgroup
 // walks the image in chunks of 256 counts (a Hillis-Steele scan in shared memory per chunk).
 #extension GL_GOOGLE_include_directive : require
@@ -17,7 +17,7 @@ shared uint s_scan[256];
 
 void main() {
   uint t = gl_LocalInvocationID.x;
-  uint n = u_frame.width * u_frame.height;
+  uint n = u_frame.width * u_frame.height;  // the domain keys of one layer (restir/domain.h)
   uint carry = 0u;
   for (uint base = 0u; base < n; base += 256u) {
     uint c = base + t < n ? b_count[base + t] : 0u;

@@ -19,6 +19,8 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "restir/path_space.glsl"
 
 layout(set = 0, binding = BINDING_RESERVOIRS_IN, std430) readonly buffer ReservoirsIn { PackedReservoir b_in[]; };
+layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
+layout(set = 0, binding = BINDING_PRIMARY_PREV, std430) readonly buffer PrimaryPrev { GpuPrimaryHit b_primary_prev[]; };
 
 uint g_rays = 0u;
 
@@ -28,11 +30,10 @@ void count_shift(ShiftResult s) {
   if (s.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + s.reason], 1u);
 }
 
-// Backprojection (DESIGN.md section 2): the previous pixel q that saw the current pixel-centre hit's
-// surface point, through the previous camera and the previous transform of its object. With
-// `previous_centre` (the biased option's validation) it also traces q's own pixel-centre ray in
-// frame t-1: the previous G-buffer sample the DI tutorial validates against. Both rays go through
-// one call site (lavapipe inlines a traversal per call site).
+// Backprojection: the previous pixel q that saw this pixel's centre hit (the primary stage's
+// visibility buffer) moved back with its object's previous transform, through the previous camera.
+// With `previous_centre` (the biased option's validation) also q's own centre hit in frame t-1:
+// the previous G-buffer sample the DI tutorial validates against, from the previous visibility buffer.
 struct Backprojection {
   uvec2 q;
   SurfaceHit centre;       // this pixel's centre hit, frame t
@@ -43,34 +44,22 @@ struct Backprojection {
 
 bool backproject(uvec2 pixel, bool previous_centre, out Backprojection b) {
   b.have_previous = false;
-  bool same_size = u_frame.prev_width == u_frame.width && u_frame.prev_height == u_frame.height;
-  for (uint job = 0u; job < (previous_centre && same_size ? 2u : 1u); ++job) {
-    bool prev = job == 1u;
-    vec3 origin;
-    vec3 dir;
-    primary_ray(camera_in(prev), prev ? vec2(b.q) : vec2(pixel), vec2(0.5), vec2(0.5), origin, dir);
-    RayHit h;
-    g_rays++;
-    bool hit = trace_closest_in(prev, origin, dir, 1e30, h);
-    if (prev) {
-      b.have_previous = hit;
-      if (hit) b.previous = load_hit_in(true, h);
-      continue;
-    }
-    if (!hit) return false;
-    b.centre = load_hit(h);
-    GpuInstance before = instance_in(true, h.instance);
-    if (before.lod != b_instances[h.instance].lod) return false;
-    vec3 p = load_hit_with(before, h).position;  // previous render space: the previous camera at the origin
-    b.centre_before = p;
-    GpuCamera cam = u_frame.prev_camera;
-    float z = dot(p, cam.forward.xyz);
-    if (!(z > 0.0)) return false;
-    float x = dot(p, cam.right.xyz) / (z * dot(cam.right.xyz, cam.right.xyz));
-    float y = dot(p, cam.up.xyz) / (z * dot(cam.up.xyz, cam.up.xyz));
-    vec2 s = vec2((x + 1.0) * 0.5 * float(u_frame.prev_width), (1.0 - y) * 0.5 * float(u_frame.prev_height));
-    if (!(s.x >= 0.0 && s.y >= 0.0 && s.x < float(u_frame.prev_width) && s.y < float(u_frame.prev_height))) return false;
-    b.q = uvec2(s);
+  SurfacePoint centre = primary_surface(b_primary[pixel_index(pixel)]);
+  if (centre.instance == SURFACE_NONE) return false;
+  b.centre = resolve_surface(false, centre).hit;
+  ResolvedSurface before = resolve_surface(true, centre);
+  if (before.reason != RESOLVE_OK) return false;
+  vec3 p = before.hit.position;  // previous render space: the previous camera at the origin
+  b.centre_before = p;
+  vec3 ndc = camera_ndc(u_frame.prev_camera, p);
+  if (!(ndc.z > 0.0)) return false;
+  vec2 s = vec2((ndc.x + 1.0) * 0.5 * float(u_frame.prev_width), (1.0 - ndc.y) * 0.5 * float(u_frame.prev_height));
+  if (!(s.x >= 0.0 && s.y >= 0.0 && s.x < float(u_frame.prev_width) && s.y < float(u_frame.prev_height))) return false;
+  b.q = uvec2(s);
+  if (previous_centre) {
+    SurfacePoint q_centre = primary_surface(b_primary_prev[b.q.y * u_frame.prev_width + b.q.x]);
+    b.have_previous = q_centre.instance != SURFACE_NONE;
+    if (b.have_previous) b.previous = resolve_surface(true, q_centre).hit;
   }
   return true;
 }
@@ -89,7 +78,7 @@ bool heuristic_valid(Backprojection b, float p_hat_current, float p_hat_previous
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
-  uint index = pixel_index(pixel);
+  uint index = domain_of(pixel, 0u);
   Reservoir canonical = unpack_reservoir(b_out[index]);
   vec3 f_canonical = b_contribution[index].rgb;
 
@@ -100,7 +89,7 @@ void main() {
   uvec2 q = bp.q;
   // Whether domain q takes part depends on geometry only. An empty reservoir in q still claims its
   // MIS share of the canonical sample (its confidence counts), it just brings no candidate.
-  if (have_history) history = unpack_reservoir(b_in[q.y * u_frame.prev_width + q.x]);
+  if (have_history) history = unpack_reservoir(b_in[prev_domain_of(q, 0u)]);
   if (!have_history || !(history.confidence > 0.0)) {
     atomicAdd(b_counters[COUNTER_TEMPORAL_NO_HISTORY], 1u);
     atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], g_rays);
@@ -113,12 +102,7 @@ void main() {
   // Both shifts run through one call site (lavapipe compiles each inlined call separately):
   // job 0, the history sample into this pixel (frame t); job 1, the canonical sample back into q
   // (frame t-1), needed only for the unbiased MIS.
-  ShiftResult fw;
-  fw.reason = SHIFT_FAIL_ZERO;
-  fw.f = vec3(0.0);
-  fw.density = 0.0;
-  fw.x1 = surface_none();
-  fw.rays = 0u;
+  ShiftResult fw = shift_none(SHIFT_FAIL_ZERO);
   float from_q = 0.0;
   for (uint job = 0u; job < (unbiased ? 2u : 1u); ++job) {
     bool back = job == 1u;
@@ -131,11 +115,11 @@ void main() {
     count_shift(s);
     if (!back) fw = s;
     // p-hat from q of the canonical sample (RS-main Eq. 7): p-hat_q(T(y_c)) |dT/dy_c|.
-    else if (s.reason == SHIFT_OK) from_q = p_hat_from(luminance(s.f), shift_jacobian(canonical.y.density, s.density));
+    else if (s.reason == SHIFT_OK) from_q = p_hat_from(luminance(s.f), s.jacobian);
   }
   // The history sample in this pixel: w_h = m_h p-hat(y') W_h |dy'/dy| (RS-main Eq. 4).
   float p_fw = fw.reason == SHIFT_OK ? luminance(fw.f) : 0.0;
-  float jacobian = fw.reason == SHIFT_OK ? shift_jacobian(history.y.density, fw.density) : 0.0;
+  float jacobian = fw.reason == SHIFT_OK ? fw.jacobian : 0.0;
 
   float w_h;
   float w_c;
@@ -158,7 +142,7 @@ void main() {
     w_h = valid && has_sample ? (c_h / total) * p_fw * history.ucw * jacobian : 0.0;
     w_c = (c_c / total) * canonical.p_hat * canonical.ucw;
   }
-  Rng rng = rng_init(index, 0x7E3A0u, u_frame.frame_index, u_frame.seed);
+  Rng rng = rng_init(pixel_index(pixel), 0x7E3A0u, u_frame.frame_index, u_frame.seed);
   GrisState s = gris_begin();
   gris_stream(s, w_c, canonical.p_hat, c_c, 0u, rng_next_float(rng));
   gris_stream(s, w_h, p_fw, c_h, 1u, rng_next_float(rng));

@@ -2,7 +2,7 @@
 // streaming selection with resampling weights w_i (Eq. 4), the unbiased contribution weight of the
 // selected sample (Eq. 5), the generalized balance heuristic (Eq. 6) over "p-hat from" values
 // (Eq. 7), confidence-weighted pairwise MIS, and the confidence cap (RS-main 3.4).
-// Every weight passes through gris_sanitize: NaN, Inf or negative values make it 0 (DESIGN.md 6).
+// Every weight passes through gris_sanitize: NaN, Inf or negative values make it 0 (docs/ARCHITECTURE.md, Robustness).
 #ifndef STRATA_RESTIR_GRIS_H
 #define STRATA_RESTIR_GRIS_H
 #include "include/lang.h"
@@ -64,7 +64,7 @@ INLINE float gris_ucw(GrisState s) {
   return gris_sanitize(s.weight_sum / s.selected_p_hat);
 }
 
-// Confidence after resampling: the capped sum (RS-main 3.4; DESIGN.md default cap 20).
+// Confidence after resampling: the capped sum (RS-main 3.4; default cap 20).
 INLINE float confidence_capped(float confidence_sum, float cap) { return min(confidence_sum, cap); }
 
 // RS-main Eq. 7, "p-hat from": the target function of domain j at the path shifted back into it,
@@ -73,13 +73,19 @@ INLINE float p_hat_from(float p_hat_in_domain_j, float jacobian_inverse) {
   return gris_sanitize(p_hat_in_domain_j * jacobian_inverse);
 }
 
-// RS-main Eq. 6 for two domains (canonical c, and one other o), as in the temporal pass and in
-// RS-main Eq. 11 and 13: the weight of domain `self` for a path whose p-hat-from values are known.
-INLINE float mis_balance2(float c_self, float p_from_self, float c_other, float p_from_other) {
-  float a = c_self * p_from_self;
-  float d = a + c_other * p_from_other;
+// RS-main Eq. 6 from its terms c_j p-hat_from_j: the weight self / (self + other + third) of one
+// domain among up to three (RS-main Eq. 11 and 13; RS-supp Eq. 20-22 with the backup domain);
+// 0 when that is not a finite number in [0, 1].
+INLINE float mis_balance_terms(float self_term, float other_term, float third_term) {
+  float d = self_term + other_term + third_term;
   if (!(d > 0.0f) || isinf(d)) return 0.0f;
-  return a / d;
+  return self_term / d;
+}
+
+// RS-main Eq. 6 for two domains (canonical c, and one other o), as in the temporal pass: the
+// weight of domain `self` for a path whose p-hat-from values are known.
+INLINE float mis_balance2(float c_self, float p_from_self, float c_other, float p_from_other) {
+  return mis_balance_terms(c_self * p_from_self, c_other * p_from_other, 0.0f);
 }
 
 // Confidence-weighted pairwise MIS over a canonical domain and k neighbours. Each pair

@@ -33,15 +33,38 @@ struct ShiftResult {
   uint reason;       // SHIFT_OK or SHIFT_FAIL_*
   vec3 f;            // f of the offset path in the domain (rgb; its luminance is p-hat)
   float density;     // replay density of the offset path
+  float jacobian;    // |dy/dx| = density(x) / density(y), bounded (shift_jacobian); 0 when the shift failed.
+                     // A splat multiplies in its camera and time factors (restir/splat.glsl).
   SurfacePoint x1;   // its primary hit
   uint rays;
 };
+
+ShiftResult shift_none(uint reason) {
+  ShiftResult r;
+  r.reason = reason;
+  r.f = vec3(0.0);
+  r.density = 0.0;
+  r.jacobian = 0.0;
+  r.x1 = surface_none();
+  r.rays = 0u;
+  return r;
+}
 
 ShiftResult shift_fail(ShiftResult r, uint reason) {
   r.reason = reason;
   r.f = vec3(0.0);
   r.density = 0.0;
+  r.jacobian = 0.0;
   return r;
+}
+
+// Jacobian |dy/dx| of a shift from a path of replay density `base` to one of density `offset`,
+// bounded like every other Jacobian (thresholds.h); 0 fails the shift.
+float shift_jacobian(float base, float offset) {
+  if (!(base > 0.0) || !(offset > 0.0)) return 0.0;
+  float j = base / offset;
+  if (!(j >= 1.0 / SHIFT_MAX_JACOBIAN && j <= SHIFT_MAX_JACOBIAN)) return 0.0;
+  return j;
 }
 
 Vertex load_vertex(bool prev, RayHit h, vec3 dir_in) {
@@ -51,12 +74,7 @@ Vertex load_vertex(bool prev, RayHit h, vec3 dir_in) {
 // Evaluates the sample y, shifted into the domain of `pixel` in the current (prev = false) or the
 // previous frame. suffix_changed: the scene moved between y's frame and the domain's frame.
 ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed) {
-  ShiftResult r;
-  r.reason = SHIFT_OK;
-  r.f = vec3(0.0);
-  r.density = 0.0;
-  r.x1 = surface_none();
-  r.rays = 0u;
+  ShiftResult r = shift_none(SHIFT_OK);
   uint n = y.segments;
   uint k = y.k;
   bool escaped = (y.flags & SAMPLE_ESCAPED) != 0u;
@@ -65,7 +83,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed)
   if (n < 2u || n > u_restir.max_segments || k > n || k == 1u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
   if (suffix_changed && k != 0u && k < n) return shift_fail(r, SHIFT_FAIL_STALE);
   // The pure reconnection shift replays only the camera sample and reconnects at x_2.
-  if (u_restir.shift_mode == SHIFT_RECONNECTION && n > 1u && k != 2u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
+  if (u_restir.shift_mode == SHIFT_RECONNECTION && k != 2u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
 
   // One loop traces every segment found by replay: segment 0 is the camera ray (subpixel and lens
   // sample kept), segment j >= 1 leaves y_j in the direction replayed from the sample's random
@@ -134,22 +152,15 @@ ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed)
     if (to_environment) {
       d = y.xk_direction;
     } else {
-      if (y.xk.instance >= uint(b_instances.length())) return shift_fail(r, SHIFT_FAIL_STALE);
-      GpuInstance inst = instance_in(prev, y.xk.instance);
-      if (inst.lod != y.xk.lod) return shift_fail(r, SHIFT_FAIL_STALE);
-      RayHit hk;
-      hk.t = 0.0;
-      hk.instance = y.xk.instance;
-      hk.geometry = y.xk.geometry;
-      hk.triangle = y.xk.triangle;
-      hk.bary = y.xk.bary;
-      SurfaceHit sk = load_hit_with(inst, hk);
+      ResolvedSurface rk = resolve_surface(prev, y.xk);  // x_k moves with its object
+      if (rk.reason != RESOLVE_OK) return shift_fail(r, SHIFT_FAIL_STALE);
+      SurfaceHit sk = rk.hit;
       vec3 e = sk.position - v.position;
       float dist2 = dot(e, e);
       if (!(dist2 > 0.0)) return shift_fail(r, SHIFT_FAIL_JACOBIAN);
       dist = sqrt(dist2);
       d = e / dist;
-      xk = make_vertex(sk, hk, inst.lod, d);
+      xk = make_vertex(sk, rk.ray, rk.lod, d);
       // A grazing x_k is excluded by the structure rules (NEE drops grazing light samples).
       if (xk.cos_in < SHIFT_MIN_COS) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
       geometry = xk.cos_in / dist2;
@@ -188,16 +199,8 @@ ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed)
   }
   if (!(luminance(r.f) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
   if (any(isnan(r.f)) || any(isinf(r.f)) || !(r.density > 0.0) || isinf(r.density)) return shift_fail(r, SHIFT_FAIL_JACOBIAN);
+  r.jacobian = shift_jacobian(y.density, r.density);
   return r;
-}
-
-// Jacobian |dy/dx| of a shift from a path of replay density `base` to one of density `offset`,
-// bounded like every other Jacobian (thresholds.h); 0 fails the shift.
-float shift_jacobian(float base, float offset) {
-  if (!(base > 0.0) || !(offset > 0.0)) return 0.0;
-  float j = base / offset;
-  if (!(j >= 1.0 / SHIFT_MAX_JACOBIAN && j <= SHIFT_MAX_JACOBIAN)) return 0.0;
-  return j;
 }
 
 #endif

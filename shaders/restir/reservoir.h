@@ -1,4 +1,4 @@
-// Path samples and reservoirs (DESIGN.md section 3), and their packed form in device memory.
+// Path samples and reservoirs (docs/ARCHITECTURE.md, State), and their packed form in device memory.
 //
 // A path sample is an area reservoir's sample (Zhang et al. 2024; RS-main 3.5): the primary hit
 // x1 is stored as the surface point itself (instance, primitive, triangle, barycentrics and LoD
@@ -67,7 +67,7 @@ struct Reservoir {
   float p_hat;       // target function value of y in its own pixel, cached
 };
 
-// 96 bytes: six 16-byte words (DESIGN.md budget: <= 96).
+// 96 bytes: six 16-byte words (budget: <= 96).
 struct PackedReservoir {
   uvec4 x1;          // instance|geometry, triangle, bary.x, bary.y
   uvec4 xk;          // instance|geometry, triangle, bary.x, bary.y
@@ -165,6 +165,6 @@ INLINE Reservoir unpack_reservoir(PackedReservoir p) {
 STRATA_NAMESPACE_END
 
 #ifdef __cplusplus
-static_assert(sizeof(strata::gpu::PackedReservoir) == 96, "DESIGN.md section 3: <= 96 bytes per reservoir");
+static_assert(sizeof(strata::gpu::PackedReservoir) == 96, "docs/ARCHITECTURE.md, State: <= 96 bytes per reservoir");
 #endif
 #endif

@@ -45,6 +45,12 @@ CONST_DEF uint SHIFT_REASONS = 8u;
 STRATA_NAMESPACE_END
 
 #ifdef __cplusplus
+#include "include/frame_data.h"
 static_assert(sizeof(strata::gpu::GpuRestirConstants) == 48);
+// The counter slots of shift failures hold one slot per reason: a new reason must not run into the
+// next block of counters (frame_data.h).
+static_assert(strata::gpu::COUNTER_TEMPORAL_FAIL + strata::gpu::SHIFT_REASONS <= strata::gpu::COUNTER_SPATIAL_FAIL);
+static_assert(strata::gpu::COUNTER_SPATIAL_FAIL + strata::gpu::SHIFT_REASONS <= strata::gpu::COUNTER_SPLAT_BACKUP_SELECTED);
+static_assert(strata::gpu::COUNTER_SPLAT_BACKUP_SELECTED < strata::gpu::COUNTER_COUNT);
 #endif
 #endif

@@ -5,6 +5,7 @@
 
 #include "include/bindings.h"
 #include "include/frame_data.h"
+#include "restir/domain.h"
 #include "restir/gris.h"
 #include "restir/reservoir.h"
 #include "restir/restir_data.h"
@@ -15,13 +16,19 @@ layout(set = 0, binding = BINDING_COUNTERS, std430) buffer Counters { uint b_cou
 layout(set = 0, binding = BINDING_RESERVOIRS_OUT, std430) buffer ReservoirsOut { PackedReservoir b_out[]; };
 layout(set = 0, binding = BINDING_CONTRIBUTION, std430) buffer Contribution { vec4 b_contribution[]; };
 
+// Per-pixel data (random streams, the visibility buffer): row-major pixel index.
 uint pixel_index(uvec2 p) { return p.y * u_frame.width + p.x; }
 
-// The contribution buffer holds two vec4 per pixel: f(Y) of the reservoir at the pixel (first
-// half), and the pixel's estimate of what its camera rays see directly, x_1's emission or the
-// environment (second half; written by the initial pass, added by the shade pass). Paths of one
-// segment are never resampled (restir_initial.comp).
-uint primary_emission_index(uint index) { return u_frame.width * u_frame.height + index; }
+// Per-domain data (reservoirs, contributions, splat keys) is indexed by domain_index only
+// (restir/domain.h): the domain of layer `layer` at a pixel of the current or the previous frame.
+uint domain_of(uvec2 pixel, uint layer) { return domain_index(pixel, layer, u_frame.width, u_frame.height); }
+uint prev_domain_of(uvec2 pixel, uint layer) { return domain_index(pixel, layer, u_frame.prev_width, u_frame.prev_height); }
+uint domain_count() { return u_frame.width * u_frame.height; }  // one layer
+
+// The contribution buffer holds f(Y) of the reservoir of every domain, then per pixel its estimate
+// of what its camera rays see directly, x_1's emission or the environment (written by the initial
+// pass, added by the shade pass). Paths of one segment are never resampled (restir_initial.comp).
+uint primary_emission_index(uvec2 pixel) { return domain_count() + pixel_index(pixel); }
 
 Reservoir reservoir_empty() {
   Reservoir r;
@@ -46,8 +53,8 @@ Reservoir reservoir_empty() {
 
 bool reservoir_valid(Reservoir r) { return (r.y.flags & SAMPLE_VALID) != 0u && r.ucw > 0.0 && r.p_hat > 0.0; }
 
-// Writes the pass's output reservoir and f(Y) at this pixel; a non-finite weight empties it
-// (DESIGN.md section 6) and is counted.
+// Writes the pass's output reservoir and f(Y) of domain `index`; a non-finite weight empties it
+// (docs/ARCHITECTURE.md, "Robustness") and is counted.
 void store_output(uint index, Reservoir r, vec3 f) {
   bool finite = !(isnan(r.ucw) || isinf(r.ucw) || isnan(r.p_hat) || isinf(r.p_hat) || any(isnan(f)) || any(isinf(f)));
   if (!finite) {

@@ -26,19 +26,8 @@ struct SplatResult {
   vec2 jitter;        // its subpixel position there
   float time;         // its shutter time there
   float jacobian;     // |T'(x)| of the whole shift (0 when it failed)
+  bool projected;     // it projected into the target image (else the shift failed off screen or at a grazing view)
 };
-
-// The primary hit's surface point of a sample in a frame (render space of that frame).
-SurfaceHit x1_in(bool prev, SurfacePoint x1, out bool ok) {
-  ok = x1.instance != SURFACE_NONE && x1.instance < uint(b_instances.length()) && instance_in(prev, x1.instance).lod == x1.lod;
-  RayHit h;
-  h.t = 0.0;
-  h.instance = ok ? x1.instance : 0u;
-  h.geometry = x1.geometry;
-  h.triangle = x1.triangle;
-  h.bary = x1.bary;
-  return load_hit_in(prev, h);
-}
 
 // Projects p through the thin lens from lens point o to the image (pixel + subpixel); false when it
 // falls outside. For a pinhole (o = the camera position) this is the perspective projection.
@@ -73,8 +62,9 @@ struct ShiftJob {
   float time_ratio;    // splat: 1/K forward, K reverse (RS-main 4.4.3); gather: 1 (time kept)
 };
 
-// K: the time partitions of this frame's shutter (1 when the camera does not move over it).
-uint splat_partitions() { return motion_blur_in(false) ? max(u_restir.splats_per_frame, 1u) : 1u; }
+// K: the time partitions of this frame's shutter (1 when the camera does not move over it), as the
+// host computed it (render/frame_constants.h time_partitions) and dispatches the splat passes.
+uint splat_partitions() { return u_frame.time_partitions; }
 
 // Splat of sample y (of the other frame) into the current (prev = false) or previous frame:
 // projection, and the camera part of the Jacobian. Forward, `time_partition` is the time time_partition n
@@ -98,14 +88,14 @@ ShiftJob splat_prepare(bool prev, PathSample y, uint time_partition) {
     time_to = clamp(tk - min(floor(tk), k - 1.0), 0.0, 0.99999994);  // the inverse of Eq. 19
     job.time_ratio = k;
   }
-  bool ok_from;
-  bool ok_to;
-  SurfaceHit from = x1_in(!prev, y.x1, ok_from);  // x_1 in the sample's own frame
-  SurfaceHit to = x1_in(prev, y.x1, ok_to);       // y_1 in the target frame
-  if (!ok_from || !ok_to) {
+  ResolvedSurface x1_from = resolve_surface(!prev, y.x1);  // x_1 in the sample's own frame
+  ResolvedSurface y1_to = resolve_surface(prev, y.x1);      // y_1 in the target frame
+  if (x1_from.reason != RESOLVE_OK || y1_to.reason != RESOLVE_OK) {
     job.reason = SHIFT_FAIL_STALE;  // gone, or another LoD level
     return job;
   }
+  SurfaceHit from = x1_from.hit;
+  SurfaceHit to = y1_to.hit;
   GpuCamera cam_from = camera_at(!prev, y.time);
   GpuCamera cam_to = camera_at(prev, time_to);
   uint w_from = prev ? u_frame.width : u_frame.prev_width;
@@ -116,10 +106,10 @@ ShiftJob splat_prepare(bool prev, PathSample y, uint time_partition) {
   uvec2 pixel;
   vec2 jitter;
   if (!project(cam_to, w_to, h_to, to.position, o_to, pixel, jitter)) return job;  // off screen
-  // RS-main Eq. 14-16 (restir/reprojection.h); grazing views fail the shift (DESIGN.md section 6).
+  // RS-main Eq. 14-16 (restir/reprojection.h); grazing views fail the shift (docs/ARCHITECTURE.md, Robustness).
   PrimaryView v_from = primary_view(from.position, from.geo_normal, lens_point(cam_from, y.lens), normalize(cam_from.forward.xyz));
   PrimaryView v_to = primary_view(to.position, to.geo_normal, o_to, normalize(cam_to.forward.xyz));
-  float area_ratio = from.area > 0.0 ? to.area / from.area : 0.0;  // |dy_1/dx_1|
+  float area_ratio = from.area > 0.0 ? to.area / from.area * (y1_to.jacobian / x1_from.jacobian) : 0.0;  // |dy_1/dx_1|
   job.camera_ratio = reprojection_jacobian(v_from, v_to, area_ratio, pixel_area(cam_from.right.xyz, cam_from.up.xyz, w_from, h_from),
                                            pixel_area(cam_to.right.xyz, cam_to.up.xyz, w_to, h_to));
   if (!(job.camera_ratio > 0.0)) {
@@ -149,28 +139,23 @@ ShiftJob gather_prepare(bool prev, vec2 pixel, PathSample y) {
 
 // After shift_path: a splat's primary ray must have found x_1's triangle again (visibility of y_1
 // from y_0, RS-main 4.1.1); the Jacobian of the whole shift. Fails the result where needed.
-float shift_finish(ShiftJob job, PathSample base, INOUT(ShiftResult) r) {
+float shift_finish(ShiftJob job, INOUT(ShiftResult) r) {
   if (r.reason == SHIFT_OK && job.splat &&
-      (r.x1.instance != base.x1.instance || r.x1.geometry != base.x1.geometry || r.x1.triangle != base.x1.triangle))
+      (r.x1.instance != job.y.x1.instance || r.x1.geometry != job.y.x1.geometry || r.x1.triangle != job.y.x1.triangle))
     r = shift_fail(r, SHIFT_FAIL_PRIMARY);
   if (r.reason != SHIFT_OK) return 0.0;
-  float j = shift_jacobian(base.density, r.density) * job.camera_ratio;
+  float j = r.jacobian * job.camera_ratio;  // the path's part (shift_path) and the camera's
   if (!(j >= 1.0 / SHIFT_MAX_JACOBIAN && j <= SHIFT_MAX_JACOBIAN)) {
     r = shift_fail(r, SHIFT_FAIL_JACOBIAN);
     return 0.0;
   }
-  return j * job.time_ratio;  // exact, outside the range check
+  r.jacobian = j * job.time_ratio;  // the time factor is exact, outside the range check
+  return r.jacobian;
 }
 
 // Runs a prepared job (its shift_path call is the caller's one call site when used in a loop).
 ShiftResult run_shift(ShiftJob job, bool suffix_changed) {
-  ShiftResult r;
-  r.reason = job.reason;
-  r.f = vec3(0.0);
-  r.density = 0.0;
-  r.x1 = surface_none();
-  r.rays = 0u;
-  if (!job.ok) return r;
+  if (!job.ok) return shift_none(job.reason);
   return shift_path(job.prev, job.pixel, job.y, suffix_changed);
 }
 
@@ -183,7 +168,8 @@ SplatResult splat_path(bool prev, PathSample y, uint time_partition, bool suffix
   r.pixel = uvec2(job.pixel);
   r.jitter = job.y.jitter;
   r.time = job.y.time;
-  r.jacobian = shift_finish(job, y, r.shift);
+  r.jacobian = shift_finish(job, r.shift);
+  r.projected = job.ok;
   return r;
 }
 

@@ -1,4 +1,4 @@
-// The scene history of methods with temporal reuse (DESIGN.md section 3, session state): after an
+// The scene history of methods with temporal reuse (docs/ARCHITECTURE.md, State): after an
 // update, the previous frame's TLAS and instance records are still on the device in the other slot,
 // bound at BINDING_TLAS_PREV / BINDING_INSTANCES_PREV, in that frame's render space; `pt` keeps none.
 #include <cstring>
@@ -107,7 +107,7 @@ TEST_F(SceneHistory, FrameConstantsDescribeThePreviousFrame) {
   EXPECT_TRUE(same_camera(c0.prev_camera, c0.camera)) << "the seeded previous slot holds the first frame";
   s.camera.orientation = glm::angleAxis(0.3f, glm::vec3(0, 1, 0));  // state 1 also turns the camera
   gpu::GpuFrameConstants c1 = update(1);
-  EXPECT_EQ(c1.history_flags, gpu::HISTORY_VALID | gpu::HISTORY_SCENE_MOVED | gpu::HISTORY_CAMERA_MOVED);
+  EXPECT_EQ(c1.history_flags, gpu::HISTORY_VALID | gpu::HISTORY_SCENE_MOVED);
   EXPECT_TRUE(same_camera(c1.prev_camera, c0.camera));
   EXPECT_FALSE(same_camera(c1.camera, c0.camera));
   EXPECT_EQ(c1.prev_width, 32u);
@@ -117,6 +117,45 @@ TEST_F(SceneHistory, FrameConstantsDescribeThePreviousFrame) {
   gpu::GpuFrameConstants c2 = update(1);  // the same state again (as when accumulating)
   EXPECT_EQ(c2.history_flags, gpu::HISTORY_VALID);
   EXPECT_TRUE(same_camera(c2.prev_camera, c1.camera));
+}
+
+// Per-instance change tracking: the device's instance records of a frame say which instances
+// moved, switched LoD level or, emitting, changed the light they cast since the previous frame;
+// an instance that stayed put is untouched, whatever else moved (and the camera's motion is not a
+// change of any instance). An emitter is added as a third instance.
+TEST_F(SceneHistory, InstanceRecordsSayWhatChanged) {
+  scene::Scene s = two_quads();
+  scene::Material light;
+  light.emission = glm::vec3(4.0f);
+  s.materials.push_back(light);
+  scene::Mesh lamp = unit_quad();
+  lamp.primitives[0].material = 1;
+  s.meshes.push_back(lamp);
+  s.instances.push_back({"lamp", {2}, glm::translate(glm::mat4(1.0f), glm::vec3(0, 3, 0)), 0});
+  render::GpuScene gs(gpu_context(), s, /*keep_history=*/true);
+  auto update = [&](scene::FrameState f) {
+    gpu_context().submit_and_wait([&](VkCommandBuffer cmd) { gs.record_update(cmd, f); });
+    auto records = gs.instances().download_as<gpu::GpuInstance>(3);
+    std::vector<uint32_t> device;
+    for (const auto& r : records) device.push_back(r.flags & gpu::INSTANCE_CHANGED);
+    EXPECT_EQ(device, gs.instance_changes()) << "host and device disagree";
+    return device;
+  };
+  scene::FrameState f0 = state(s, 0);
+  f0.transforms.push_back(s.instances[2].transform);
+  f0.lods.push_back(0);
+  EXPECT_EQ(update(f0), (std::vector<uint32_t>{0, 0, 0})) << "the first frame has nothing to compare with";
+  scene::FrameState f1 = state(s, 1);  // the mover moves and switches level; the camera moves too
+  f1.transforms.push_back(s.instances[2].transform);
+  f1.lods.push_back(0);
+  EXPECT_EQ(update(f1), (std::vector<uint32_t>{gpu::INSTANCE_CHANGED_TRANSFORM | gpu::INSTANCE_CHANGED_LOD, 0, 0}));
+  EXPECT_EQ(gs.changed_instances(), 1u);
+  scene::FrameState f2 = f1;  // only the lamp moves
+  f2.transforms[2] = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 3, 0));
+  EXPECT_EQ(update(f2), (std::vector<uint32_t>{0, 0, gpu::INSTANCE_CHANGED_TRANSFORM | gpu::INSTANCE_CHANGED_EMISSION}));
+  EXPECT_TRUE(gs.moved_since_previous());
+  EXPECT_EQ(update(f2), (std::vector<uint32_t>{0, 0, 0})) << "the same state again";
+  EXPECT_FALSE(gs.moved_since_previous());
 }
 
 TEST_F(SceneHistory, WithoutHistoryThereIsOneSlotAndNoExtraMemory) {

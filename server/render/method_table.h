@@ -1,0 +1,48 @@
+#pragma once
+// The method table: every rendering method is one row, and everything that depends on which
+// method a session or `stratad render` asked for reads that row (construction, option
+// validation, the session's decisions, the CLI help). No method name is compared anywhere else.
+// Adding a method is one row here plus whatever new stages it composes (docs/ARCHITECTURE.md).
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace strata::render {
+
+// The stages a frame can be composed of (docs/ARCHITECTURE.md, "The frame as stages").
+enum class StageKind {
+  path_trace,       // pt: the reference path tracer
+  primary,          // the visibility buffer: the pixel-centre hit of every pixel
+  initial,          // canonical samples (N_init candidate paths per pixel)
+  temporal_gather,  // the previous reservoir at the backprojected pixel (Lin 2022 section 7)
+  temporal_splat,   // previous reservoirs splatted forward (RS-main 4.1), four passes
+  spatial,          // neighbours in a disk (Lin 2022 section 7)
+  shade,            // f(Y) W into the image
+};
+
+const char* stage_name(StageKind kind);
+
+struct MethodSpec {
+  const char* name;
+  const char* summary;       // one line: CLI help and the session's `method` decision
+  bool reuse;                // resampling with reservoirs kept between frames (history)
+  bool direct_lighting;      // one-bounce paths (ReSTIR DI)
+  bool splatting;            // temporal reuse by splatting: `splats_per_frame` applies
+  bool backup;               // splatting with the backprojected backup sample (RS-main 4.2)
+  bool layers;               // pixel-layer domains (the ML paper): `layers` applies
+  StageKind temporal;        // the temporal stage (reuse methods)
+  std::vector<StageKind> stages() const;  // all stages, in frame order, before options switch any off
+};
+
+const std::vector<MethodSpec>& method_table();
+// The row of `name`; std::invalid_argument naming `field` and the methods when there is none.
+const MethodSpec& method_spec(const std::string& name, const std::string& field = "method");
+std::vector<std::string> available_methods();
+// "pt, restir-gather, ..." for messages and help.
+std::string method_names();
+// One line per method, "name: summary", for --help.
+std::string method_help();
+// The method a session or `stratad render` uses when none is named.
+inline constexpr const char* k_default_method = "pt";
+
+}  // namespace strata::render

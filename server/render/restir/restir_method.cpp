@@ -1,0 +1,105 @@
+#include "render/restir/restir_method.h"
+
+#include "include/frame_data.h"
+#include "render/restir/stages.h"
+#include "restir/restir_data.h"
+
+namespace strata::render {
+
+RestirMethod::RestirMethod(const SharedResources& shared, const RenderSettings& settings, const MethodSpec& spec)
+    : state_(shared, settings, spec) {
+  const RestirOptions& o = settings.restir;
+  for (StageKind kind : spec.stages()) {
+    switch (kind) {
+      case StageKind::initial: stages_.push_back(make_initial_stage(state_)); break;
+      case StageKind::temporal_gather:
+        if (o.temporal) stages_.push_back(make_temporal_gather_stage(state_));
+        break;
+      case StageKind::temporal_splat:
+        if (o.temporal) stages_.push_back(make_temporal_splat_stage(state_));
+        break;
+      case StageKind::spatial:
+        if (o.spatial) stages_.push_back(make_spatial_stage(state_));
+        break;
+      case StageKind::shade: stages_.push_back(make_shade_stage(state_)); break;
+      case StageKind::primary:
+        if (o.temporal) stages_.push_back(make_primary_stage(state_));  // only the temporal stages read it
+        break;
+      case StageKind::path_trace: break;
+    }
+  }
+}
+
+RestirMethod::~RestirMethod() = default;
+
+uint32_t RestirMethod::timed_passes() const {
+  uint32_t n = 0;
+  for (const auto& s : stages_) n += s->timed_passes();
+  return n;
+}
+
+const Stage* RestirMethod::find(StageKind kind) const {
+  for (const auto& s : stages_)
+    if (s->kind() == kind) return s.get();
+  return nullptr;
+}
+
+// The frame: primary -> initial -> temporal -> spatial -> shade. The stage that writes the frame's final
+// reservoirs into history.current is spatial; without it, the temporal output (work) is copied there.
+void RestirMethod::record(VkCommandBuffer cmd, gpu::PassTimer& timer, const MethodFrame& f) {
+  const StageFrame frame{cmd, timer, f, state_.shared.scene.parity()};
+  const bool spatial = find(StageKind::spatial) != nullptr;
+  for (const auto& stage : stages_) {
+    if (stage->kind() == StageKind::shade && !spatial) {
+      VkBufferCopy region{0, 0, state_.work.size()};
+      vkCmdCopyBuffer(cmd, state_.work.handle(), state_.history.current(frame.parity).handle(), 1, &region);
+      gpu::compute_barrier(cmd);
+    }
+    stage->record(frame);
+  }
+}
+
+std::vector<PassDecision> RestirMethod::decisions() const {
+  std::vector<PassDecision> d = {{"path_trace", false, std::string("method ") + state_.spec.name + " resamples instead"},
+                                 {"domain_init", false, "single-layer domains: one per pixel"}};
+  auto add = [&](StageKind kind, const char* pass, const std::string& absent) {
+    if (const Stage* s = find(kind)) d.push_back(s->decision());
+    else d.push_back({pass, false, absent});
+  };
+  add(StageKind::primary, "primary", "no temporal stage reads pixel-centre hits (restir.temporal = false)");
+  add(StageKind::initial, "initial", "");
+  add(state_.spec.temporal, "temporal", "disabled (restir.temporal = false)");
+  add(StageKind::spatial, "spatial", "disabled (restir.spatial = false)");
+  add(StageKind::shade, "shade", "");
+  return d;
+}
+
+std::map<std::string, uint64_t> RestirMethod::memory_bytes() const {
+  auto m = state_.memory_bytes();
+  for (const auto& s : stages_)
+    for (const auto& [group, bytes] : s->memory_bytes()) m[group] += bytes;
+  return m;
+}
+
+void RestirMethod::collect(std::span<const uint32_t> c, FrameStats& s) const {
+  using namespace gpu;
+  s.rays_traced.clear();  // the path tracer's kinds; ReSTIR counts by pass
+  s.rays_traced["initial"] = c[COUNTER_RAYS_INITIAL];
+  s.rays_traced["temporal"] = c[COUNTER_RAYS_TEMPORAL];
+  s.rays_traced["spatial"] = c[COUNTER_RAYS_SPATIAL];
+  static const char* reasons[SHIFT_REASONS] = {"ok", "primary", "replay", "structure", "occluded", "jacobian", "stale", "zero"};
+  s.reuse["temporal.shifts"] = c[COUNTER_TEMPORAL_SHIFTS];
+  s.reuse["temporal.no_history"] = c[COUNTER_TEMPORAL_NO_HISTORY];
+  s.reuse["temporal.selected"] = c[COUNTER_TEMPORAL_SELECTED];
+  s.reuse["temporal.validation_refused"] = c[COUNTER_TEMPORAL_INVALID];
+  for (const auto& stage : stages_) stage->collect(c, s);
+  s.reuse["scene.instances_changed"] = state_.shared.scene.changed_instances();  // since the previous frame
+  s.reuse["spatial.shifts"] = c[COUNTER_SPATIAL_SHIFTS];
+  s.reuse["spatial.selected"] = c[COUNTER_SPATIAL_SELECTED];
+  for (uint32_t r = 1; r < SHIFT_REASONS; ++r) {
+    s.shift_failures[std::string("temporal.") + reasons[r]] = c[COUNTER_TEMPORAL_FAIL + r];
+    s.shift_failures[std::string("spatial.") + reasons[r]] = c[COUNTER_SPATIAL_FAIL + r];
+  }
+}
+
+}  // namespace strata::render

@@ -1,0 +1,72 @@
+#include "render/restir/restir_state.h"
+
+#include <algorithm>
+
+#include "include/bindings.h"
+#include "restir/primary_data.h"
+#include "restir/reservoir.h"
+#include "restir/restir_data.h"
+
+namespace strata::render {
+namespace {
+
+gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec& spec) {
+  const RestirOptions& o = s.restir;
+  gpu::GpuRestirConstants c{};
+  c.initial_candidates = o.initial_candidates;
+  c.light_candidates = o.light_candidates;
+  c.shift_mode = o.shift == "reconnection" ? gpu::SHIFT_RECONNECTION : gpu::SHIFT_HYBRID;
+  c.mis_mode = o.mis == "balance" ? gpu::MIS_BALANCE : gpu::MIS_PAIRWISE;
+  c.confidence_cap = o.confidence_cap;
+  c.spatial_radius = o.spatial_radius;
+  c.spatial_neighbors = o.spatial_neighbors;
+  c.flags = (o.unbiased ? gpu::RESTIR_UNBIASED : 0u) | (spec.backup ? gpu::RESTIR_SPLAT_BACKUP : 0u);
+  c.splats_per_frame = o.splats_per_frame;
+  // ReSTIR DI: camera, x1, light (one bounce).
+  c.max_segments = spec.direct_lighting || o.direct_lighting ? std::min<uint32_t>(2, s.max_depth) : s.max_depth;
+  return c;
+}
+
+gpu::Buffer device_storage(const gpu::Context& ctx, size_t bytes, const char* name) {
+  return gpu::Buffer(ctx, bytes, gpu::k_storage_usage, gpu::Memory::Device, name);
+}
+
+}  // namespace
+
+RestirState::RestirState(const SharedResources& shared_resources, const RenderSettings& render_settings, const MethodSpec& method)
+    : shared(shared_resources),
+      settings(render_settings),
+      spec(method),
+      width(render_settings.width),
+      height(render_settings.height),
+      domains(uint64_t(render_settings.width) * render_settings.height) {
+  const auto& ctx = shared.ctx;
+  constants = gpu::Buffer(ctx, sizeof(gpu::GpuRestirConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "restir constants");
+  gpu::GpuRestirConstants c = make_constants(settings, spec);
+  constants.upload(&c, sizeof c);
+  work = device_storage(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (work)");
+  history = PingPong(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (history)");
+  // Per domain: f(Y) of the reservoir there, then (second half) what the camera rays see directly.
+  contribution = device_storage(ctx, 2 * sizeof(glm::vec4) * domains, "contribution");
+  // The temporal stages read the visibility buffer; without temporal reuse there is no primary stage.
+  if (settings.restir.temporal)
+    visibility = PingPong(ctx, sizeof(gpu::GpuPrimaryHit) * size_t(width) * height, "visibility buffer");
+}
+
+std::map<std::string, uint64_t> RestirState::memory_bytes() const {
+  std::map<std::string, uint64_t> m = {{"reservoirs", work.size() + history.size()},
+                                       {"contribution", contribution.size()},
+                                       {"frame_constants_and_counters", constants.size()}};
+  if (visibility.size() > 0) m["visibility"] = visibility.size();
+  return m;
+}
+
+std::vector<PassResource> restir_resources(const RestirState& state, PassResource out, std::vector<PassResource> extra) {
+  std::vector<PassResource> r = {uniform(BINDING_FRAME, state.shared.constants), uniform(BINDING_RESTIR, state.constants),
+                                 storage(BINDING_COUNTERS, Access::read_write, state.shared.counters), std::move(out),
+                                 storage(BINDING_CONTRIBUTION, Access::read_write, state.contribution)};
+  for (auto& e : extra) r.push_back(std::move(e));
+  return r;
+}
+
+}  // namespace strata::render

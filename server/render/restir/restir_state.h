@@ -1,0 +1,44 @@
+#pragma once
+// The state a ReSTIR session keeps on the device (docs/ARCHITECTURE.md, "State"): the method's
+// constants, the reservoirs of every domain (work: this frame's canonical and temporal output;
+// history: the final reservoirs, ping-pong, so that the previous frame's stay readable while this
+// frame's are written), the contribution f(Y) of each domain's reservoir, and the visibility
+// buffer of the primary stage (ping-pong too: the gather's biased validation reads the previous one).
+// Every buffer is sized by the domain count: one domain per pixel (layer 0) for now.
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "render/method.h"
+#include "render/method_table.h"
+#include "render/pass.h"
+#include "render/renderer.h"
+
+namespace strata::render {
+
+struct RestirState {
+  RestirState(const SharedResources& shared, const RenderSettings& settings, const MethodSpec& spec);
+  RestirState(const RestirState&) = delete;
+  RestirState& operator=(const RestirState&) = delete;
+
+  const SharedResources shared;
+  const RenderSettings settings;
+  const MethodSpec& spec;
+  uint32_t width, height;
+  uint32_t layers = 1;        // pixel layers (domains per pixel)
+  uint64_t domains;           // width * height * layers
+
+  gpu::Buffer constants;      // GpuRestirConstants (uniform)
+  gpu::Buffer work;           // per domain: canonical, then temporal output
+  PingPong history;           // per domain: the frame's final reservoirs
+  gpu::Buffer contribution;   // per domain f(Y) of its reservoir, then per pixel the directly seen emission
+  PingPong visibility;        // per pixel: the pixel-centre hit (GpuPrimaryHit); allocated with the primary stage
+
+  std::map<std::string, uint64_t> memory_bytes() const;
+};
+
+// What every ReSTIR pass binds (shaders/restir/restir_pass.glsl): frame and method constants,
+// counters, the reservoirs it writes at `out`, the contribution buffer; then `extra`.
+std::vector<PassResource> restir_resources(const RestirState& state, PassResource out, std::vector<PassResource> extra = {});
+
+}  // namespace strata::render

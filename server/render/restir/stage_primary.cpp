@@ -1,0 +1,36 @@
+// Stage `primary`: the visibility buffer of this frame (shaders/passes/primary.comp): the
+// pixel-centre hit of every pixel, traced once, into RestirState::visibility's current slot.
+#include "include/bindings.h"
+#include "render/restir/restir_state.h"
+#include "render/restir/stages.h"
+
+namespace strata::render {
+namespace {
+
+class PrimaryStage : public Stage {
+ public:
+  explicit PrimaryStage(const RestirState& state)
+      : state_(state),
+        pass_(state.shared.ctx, &state.shared.scene, {.lights = false, .history = false}, "primary",
+              {uniform(BINDING_FRAME, state.shared.constants),
+               history_current(BINDING_PRIMARY, Access::write, state.visibility)}) {}
+  StageKind kind() const override { return StageKind::primary; }
+  uint32_t timed_passes() const override { return 1; }
+  void record(const StageFrame& f) override {
+    timed(f, "primary", [&] { pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height); });
+  }
+  PassDecision decision() const override { return {"primary", true, "pixel-centre hits for the temporal stage"}; }
+  void collect(std::span<const uint32_t>, FrameStats& s) const override {
+    s.rays_traced["primary"] = uint64_t(state_.width) * state_.height;  // one ray per pixel
+  }
+
+ private:
+  const RestirState& state_;
+  Pass pass_;
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> make_primary_stage(const RestirState& state) { return std::make_unique<PrimaryStage>(state); }
+
+}  // namespace strata::render

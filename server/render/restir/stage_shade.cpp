@@ -1,0 +1,35 @@
+// Stage `shade`: each pixel's estimate f(Y) W of its final reservoir plus what its camera rays see
+// directly, added to the image (shaders/passes/restir_shade.comp).
+#include "include/bindings.h"
+#include "render/restir/restir_state.h"
+#include "render/restir/stages.h"
+
+namespace strata::render {
+namespace {
+
+class ShadeStage : public Stage {
+ public:
+  explicit ShadeStage(const RestirState& state)
+      : state_(state),
+        pass_(state.shared.ctx, nullptr, {}, "restir_shade",
+              {uniform(BINDING_FRAME, state.shared.constants), storage(BINDING_COUNTERS, Access::read_write, state.shared.counters),
+               history_current(BINDING_RESERVOIRS_IN, Access::read, state.history),
+               storage(BINDING_CONTRIBUTION, Access::read, state.contribution),
+               storage(BINDING_ACCUM, Access::read_write, state.shared.accum)}) {}
+  StageKind kind() const override { return StageKind::shade; }
+  uint32_t timed_passes() const override { return 1; }
+  void record(const StageFrame& f) override {
+    timed(f, "shade", [&] { pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height); });
+  }
+  PassDecision decision() const override { return {"shade", true, "f(Y) W"}; }
+
+ private:
+  const RestirState& state_;
+  Pass pass_;
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> make_shade_stage(const RestirState& state) { return std::make_unique<ShadeStage>(state); }
+
+}  // namespace strata::render

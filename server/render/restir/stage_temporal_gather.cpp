@@ -1,0 +1,44 @@
+// Stage `temporal-gather` (restir-gather, restir-di): the current pixel-centre hit is backprojected
+// into the previous frame, and the reservoir found there is shifted here and resampled with the
+// canonical sample (shaders/passes/restir_temporal.comp).
+#include "include/bindings.h"
+#include "render/restir/restir_state.h"
+#include "render/restir/stages.h"
+
+namespace strata::render {
+namespace {
+
+class TemporalGatherStage : public Stage {
+ public:
+  explicit TemporalGatherStage(const RestirState& state)
+      : state_(state),
+        pass_(state.shared.ctx, &state.shared.scene, {.lights = false, .history = true}, "restir_temporal",
+              restir_resources(state, storage(BINDING_RESERVOIRS_OUT, Access::read_write, state.work),
+                               {history_previous(BINDING_RESERVOIRS_IN, state.history),
+                                history_current(BINDING_PRIMARY, Access::read, state.visibility),
+                                history_previous(BINDING_PRIMARY_PREV, state.visibility)})) {}
+  StageKind kind() const override { return StageKind::temporal_gather; }
+  uint32_t timed_passes() const override { return 1; }
+  void record(const StageFrame& f) override {
+    ran_ = f.frame.history_valid;
+    if (!ran_) return;
+    timed(f, "temporal", [&] { pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height); });
+  }
+  PassDecision decision() const override {
+    const RestirOptions& o = state_.settings.restir;
+    if (!ran_) return {"temporal", false, "no previous frame yet"};
+    return {"temporal", true,
+            "gather, " + o.shift + " shift, " + (o.unbiased ? "reverse-shift MIS" : "confidence weights (biased)")};
+  }
+
+ private:
+  const RestirState& state_;
+  Pass pass_;
+  bool ran_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> make_temporal_gather_stage(const RestirState& state) { return std::make_unique<TemporalGatherStage>(state); }
+
+}  // namespace strata::render

@@ -1,0 +1,134 @@
+// Stage `temporal-splat` (restir-splat; RS-main 4.1, RS-supp 3.1) and, with the method's `backup`,
+// `temporal-splat-backup` (restir-splat-backup; RS-main 4.2): instead of gathering the backprojected
+// previous pixel's reservoir, every previous reservoir is splatted forward into the pixel its
+// primary hit lands in now, through a counting sort in four passes:
+//   splat_project   per previous pixel (and time partition): the forward shift and a count per current pixel
+//   splat_scan      exclusive prefix sum of the counts
+//   splat_insert    each landed splat into its pixel's range of the list
+//   splat_resample  per current pixel: GRIS of the canonical sample with the splats that landed
+//                   (and the backup sample, shifted from the backprojected previous pixel)
+// Over an open shutter every previous reservoir splats into K time partitions (RS-main Eq. 19).
+#include "include/bindings.h"
+#include "include/frame_data.h"
+#include "render/frame_constants.h"
+#include "render/restir/restir_state.h"
+#include "render/restir/stages.h"
+#include "restir/splat_data.h"
+
+namespace strata::render {
+namespace {
+
+gpu::Buffer device_storage(const gpu::Context& ctx, size_t bytes, const char* name) {
+  return gpu::Buffer(ctx, bytes, gpu::k_storage_usage, gpu::Memory::Device, name);
+}
+
+class TemporalSplatStage : public Stage {
+ public:
+  explicit TemporalSplatStage(const RestirState& state)
+      : state_(state),
+        count_(device_storage(state.shared.ctx, sizeof(uint32_t) * state.domains, "splat counts")),
+        offsets_(device_storage(state.shared.ctx, sizeof(uint32_t) * (state.domains + 1), "splat offsets")) {
+    allocate_records(1);
+    const auto& ctx = state.shared.ctx;
+    const GpuScene* scene = &state.shared.scene;
+    const SceneUse with_history{.lights = false, .history = true};
+    auto out = [&] { return storage(BINDING_RESERVOIRS_OUT, Access::read_write, state.work); };
+    auto in = [&] { return history_previous(BINDING_RESERVOIRS_IN, state.history); };
+    project_ = std::make_unique<Pass>(ctx, scene, with_history, "restir_splat_project",
+                                      restir_resources(state, out(),
+                                                       {in(), storage(BINDING_SPLATS, Access::write, splats_),
+                                                        storage(BINDING_SPLAT_TARGET, Access::write, target_),
+                                                        storage(BINDING_SPLAT_COUNT, Access::read_write, count_)}));
+    scan_ = std::make_unique<Pass>(ctx, nullptr, SceneUse{}, "restir_splat_scan",
+                                   std::vector<PassResource>{uniform(BINDING_FRAME, state.shared.constants),
+                                                             storage(BINDING_SPLAT_COUNT, Access::read, count_),
+                                                             storage(BINDING_SPLAT_OFFSETS, Access::write, offsets_)});
+    insert_ = std::make_unique<Pass>(ctx, nullptr, SceneUse{}, "restir_splat_insert",
+                                     std::vector<PassResource>{uniform(BINDING_FRAME, state.shared.constants),
+                                                               storage(BINDING_SPLAT_TARGET, Access::read, target_),
+                                                               storage(BINDING_SPLAT_COUNT, Access::read_write, count_),
+                                                               storage(BINDING_SPLAT_OFFSETS, Access::read, offsets_),
+                                                               storage(BINDING_SPLAT_LIST, Access::write, list_)});
+    resample_ = std::make_unique<Pass>(ctx, scene, with_history, "restir_splat_resample",
+                                       restir_resources(state, out(),
+                                                        {in(), storage(BINDING_SPLATS, Access::read, splats_),
+                                                         storage(BINDING_SPLAT_OFFSETS, Access::read, offsets_),
+                                                         storage(BINDING_SPLAT_LIST, Access::read, list_),
+                                                         history_current(BINDING_PRIMARY, Access::read, state.visibility)}));
+  }
+
+  StageKind kind() const override { return StageKind::temporal_splat; }
+  uint32_t timed_passes() const override { return 4; }
+
+  void record(const StageFrame& f) override {
+    ran_ = f.frame.history_valid;
+    if (!ran_) return;
+    // K of this frame (RS-main Eq. 19), as the passes read it from the frame constants.
+    partitions_ = time_partitions(f.frame.frame, state_.settings.restir.splats_per_frame);
+    if (partitions_ > allocated_partitions_) {
+      allocate_records(partitions_);
+      for (Pass* p : {project_.get(), insert_.get(), resample_.get()}) p->rebind();
+    }
+    const uint32_t w = state_.width, h = state_.height;
+    timed(f, "splat_project", [&] {
+      vkCmdFillBuffer(f.cmd, count_.handle(), 0, VK_WHOLE_SIZE, 0);
+      gpu::compute_barrier(f.cmd);
+      project_->dispatch_layers(f.cmd, f.parity, w, h, partitions_);  // one layer per time partition
+    });
+    timed(f, "splat_scan", [&] { scan_->dispatch_1d(f.cmd, f.parity, 1); });
+    timed(f, "splat_insert", [&] { insert_->dispatch_layers(f.cmd, f.parity, w, h, partitions_); });
+    timed(f, "splat_resample", [&] { resample_->dispatch_2d(f.cmd, f.parity, w, h); });
+  }
+
+  PassDecision decision() const override {
+    if (!ran_) return {"temporal", false, "no previous frame yet"};
+    return {"temporal", true,
+            std::string(state_.spec.backup ? "splat with backup sample" : "splat") + " (counting sort; reprojection + " +
+                state_.settings.restir.shift + " shift, reverse-splat MIS, bilinear confidence" +
+                (partitions_ > 1 ? "; " + std::to_string(partitions_) + " time partitions over the shutter)" : ")")};
+  }
+
+  std::map<std::string, uint64_t> memory_bytes() const override {
+    return {{"splats", splats_.size() + target_.size() + count_.size() + offsets_.size() + list_.size()}};
+  }
+
+  void collect(std::span<const uint32_t> c, FrameStats& s) const override {
+    using namespace gpu;
+    // RS-main statistics of splatting: splats per pixel (mean over pixels is landed / pixels), the
+    // fullest pixel; holes (pixels no splat reached) are temporal.no_history. Of the forward splats
+    // that did not land, those that fell outside the image and those whose primary hit is hidden
+    // now (the visibility test of RS-main 4.1.1); temporal.primary also counts the reverse splats.
+    s.reuse["splat.landed"] = c[COUNTER_SPLATS_LANDED];
+    s.reuse["splat.max_per_pixel"] = c[COUNTER_SPLATS_MAX];
+    s.reuse["splat.partitions"] = ran_ ? partitions_ : 0;  // K time partitions of this frame's shutter
+    s.reuse["splat.offscreen"] = c[COUNTER_SPLATS_OFFSCREEN];
+    s.reuse["splat.occluded"] = c[COUNTER_SPLATS_OCCLUDED];
+    if (state_.spec.backup) s.reuse["splat.backup_selected"] = c[COUNTER_SPLAT_BACKUP_SELECTED];
+  }
+
+ private:
+  // Records, targets and the list grow with K (multi-splatting, RS-main Eq. 19) the first time a
+  // frame's shutter needs it: a session that never opens the shutter keeps one partition.
+  void allocate_records(uint32_t partitions) {
+    allocated_partitions_ = partitions;
+    const auto& ctx = state_.shared.ctx;
+    const size_t records = state_.domains * partitions;
+    splats_ = device_storage(ctx, sizeof(gpu::SplatRecord) * records, "splats");
+    target_ = device_storage(ctx, sizeof(uint32_t) * records, "splat targets");
+    list_ = device_storage(ctx, sizeof(uint32_t) * records, "splat list");
+  }
+
+  const RestirState& state_;
+  gpu::Buffer count_, offsets_;
+  gpu::Buffer splats_, target_, list_;  // reallocated in place by allocate_records (the passes then rebind)
+  std::unique_ptr<Pass> project_, scan_, insert_, resample_;
+  uint32_t allocated_partitions_ = 0;
+  uint32_t partitions_ = 1;
+  bool ran_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> make_temporal_splat_stage(const RestirState& state) { return std::make_unique<TemporalSplatStage>(state); }
+
+}  // namespace strata::render

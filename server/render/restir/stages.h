@@ -1,0 +1,25 @@
+#pragma once
+// The stages a ReSTIR method composes (method_table.h, docs/ARCHITECTURE.md). Each one is
+// declared in its own file with the passes it records and the state it reads and writes.
+#include <memory>
+
+#include "render/restir/stage.h"
+
+namespace strata::render {
+
+// primary: the visibility buffer (pixel-centre hits) -> visibility.current.
+std::unique_ptr<Stage> make_primary_stage(const RestirState& state);
+// initial: the canonical sample of every domain (restir_initial) -> work.
+std::unique_ptr<Stage> make_initial_stage(const RestirState& state);
+// temporal-gather: history.previous at the backprojected pixel, shifted and resampled with the
+// canonical sample (restir_temporal); work, visibility -> work.
+std::unique_ptr<Stage> make_temporal_gather_stage(const RestirState& state);
+// temporal-splat (and with the method's `backup`, temporal-splat-backup): history.previous
+// splatted forward through a counting sort (four passes, RS-supp 3.1); work, visibility -> work.
+std::unique_ptr<Stage> make_temporal_splat_stage(const RestirState& state);
+// spatial: neighbours in a disk (restir_spatial); work -> history.current.
+std::unique_ptr<Stage> make_spatial_stage(const RestirState& state);
+// shade: f(Y) W and the directly seen emission into the image (restir_shade); history.current -> accum.
+std::unique_ptr<Stage> make_shade_stage(const RestirState& state);
+
+}  // namespace strata::render

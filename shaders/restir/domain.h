@@ -1,0 +1,20 @@
+// Domain addressing (docs/ARCHITECTURE.md, "Domains"): a ReSTIR domain is a (pixel, layer) pair
+// (the ML paper's pixel-layer domains; layer 0 is the front layer, the only one so far). Every
+// buffer of per-domain data (reservoirs, contributions, splat keys) is indexed by domain_index and
+// by nothing else, so adding layers changes this one function and the buffers' sizes.
+#ifndef STRATA_DOMAIN_H
+#define STRATA_DOMAIN_H
+#include "include/lang.h"
+
+STRATA_NAMESPACE_BEGIN
+
+// Layer-major: all of layer 0's pixels row by row, then layer 1's, ...
+INLINE uint domain_index(uvec2 pixel, uint layer, uint width, uint height) {
+  return (layer * height + pixel.y) * width + pixel.x;
+}
+
+// The pixel of a layer-0 domain index (the inverse of domain_index for layer 0).
+INLINE uvec2 domain_pixel(uint index, uint width) { return uvec2(index % width, index / width); }
+
+STRATA_NAMESPACE_END
+#endif

@@ -1,0 +1,19 @@
+// Ranges of the ReSTIR options, defined once for the host (validation of sessions and of
+// `stratad render`) and the passes (fixed-size arrays).
+#ifndef STRATA_RESTIR_LIMITS_H
+#define STRATA_RESTIR_LIMITS_H
+#include "include/lang.h"
+
+STRATA_NAMESPACE_BEGIN
+
+CONST_DEF uint RESTIR_MAX_SPATIAL_NEIGHBORS = 8u;   // restir_spatial.comp keeps them in an array
+CONST_DEF uint RESTIR_MAX_INITIAL_CANDIDATES = 64u;
+CONST_DEF uint RESTIR_MAX_LIGHT_CANDIDATES = 32u;
+CONST_DEF uint RESTIR_MAX_SPLATS_PER_FRAME = 64u;   // K time partitions (RS-main Eq. 19)
+CONST_DEF float RESTIR_MIN_CONFIDENCE_CAP = 1.0f;
+CONST_DEF float RESTIR_MAX_CONFIDENCE_CAP = 1000.0f;
+CONST_DEF float RESTIR_MIN_SPATIAL_RADIUS = 1.0f;   // pixels
+CONST_DEF float RESTIR_MAX_SPATIAL_RADIUS = 256.0f;
+
+STRATA_NAMESPACE_END
+#endif
