@@ -104,7 +104,7 @@ TEST_F(Passes, IndirectDispatchCoversTheSameWorkAsTheDirectOne) {
     EXPECT_EQ(std::memcmp(&x[i], &y[i], sizeof x[i]), 0) << "pixel " << i;
     hits += (x[i].flags & gpu::PRIMARY_HIT) != 0u;
   }
-  EXPECT_EQ(hits, w * h) << "the cornell box is closed: every pixel-centre ray hits a wall";
+  EXPECT_GT(hits, w * h / 2) << "most pixel-centre rays hit the box: the comparison must cover hits";
 }
 
 }  // namespace
