@@ -12,6 +12,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "include/bindings.h"
 #include "include/frame_data.h"
 #include "include/scene_bridge.glsl"
+#include "sampling/emitter_pdf.h"
 #include "sampling/russian_roulette.h"
 #include "material/bsdf.h"
 #include "sampling/light_sampling.glsl"
@@ -73,8 +74,8 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     if (any(greaterThan(emission, vec3(0.0))) && (front || double_sided)) {
       float w = 1.0;
       if (k_emitters && prev_bsdf_pdf > 0.0) {
-        float pmf = emitter_select_pmf(emission, s.area, double_sided, u_frame);
-        w = mis_power(prev_bsdf_pdf, emitter_pdf_solid_angle(pmf, s.area, rh.t, cos_hit));
+        w = mis_power(prev_bsdf_pdf, emitter_solid_angle_pdf(u_frame.total_emitter_power, u_frame.env_select_prob, emission,
+                                                             s.area, double_sided, rh.t, cos_hit));
       }
       radiance += throughput * emission * w;
     }

@@ -7,6 +7,7 @@
 
 #include "material/bsdf.h"
 #include "restir/reconnection.h"
+#include "sampling/emitter_pdf.h"
 #include "restir/reservoir.h"
 #include "restir/thresholds.h"
 #include "sampling/mis.h"
@@ -78,15 +79,13 @@ float scatter_pdf(Vertex v, vec3 d) {
 
 vec3 spawn(Vertex v) { return offset_ray_origin(v.position, v.ng); }
 
-// Light-sampling densities of either frame (light_sampling.glsl's, with that frame's totals).
+// Light-sampling densities of either frame (sampling/emitter_pdf.h with that frame's totals).
 bool env_is_sampled() { return u_frame.environment.a > 0.0; }
 
 float light_pdf_emitter(bool prev, vec3 emission, float area, bool double_sided, float dist, float cos_light) {
   float total = prev ? u_frame.prev_total_emitter_power : u_frame.total_emitter_power;
   float env_select = prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob;
-  if (!(total > 0.0) || !(area > 0.0) || !(cos_light > 0.0)) return 0.0;
-  float pmf = (1.0 - env_select) * luminance(emission) * area * (double_sided ? 2.0 : 1.0) / total;
-  return gris_sanitize(pmf / area * dist * dist / cos_light);
+  return gris_sanitize(emitter_solid_angle_pdf(total, env_select, emission, area, double_sided, dist, cos_light));
 }
 
 float light_pdf_environment(bool prev) {

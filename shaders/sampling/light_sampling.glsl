@@ -25,15 +25,9 @@ struct LightSample {
   float cos_light;    // |cos| at the emitter towards the shading point
 };
 
-// Power-proportional selection probability that light sampling assigns to an emitter hit by
-// another strategy; mirrors the host's power (luminance * area * sides) / total.
-float emitter_select_pmf(vec3 emission, float area, bool double_sided, GpuFrameConstants f) {
-  if (!(f.total_emitter_power > 0.0)) return 0.0;
-  float power = dot(emission, vec3(0.2126, 0.7152, 0.0722)) * area * (double_sided ? 2.0 : 1.0);
-  return (1.0 - f.env_select_prob) * power / f.total_emitter_power;
-}
-
-// Solid-angle density of sampling a point on an emitter of `area` seen at `distance` under `cos_light`.
+// Solid-angle density of sampling a point on an emitter of `area` seen at `distance` under
+// `cos_light`, given its selection probability (of a sampled emitter: its alias-table pmf; an
+// emitter hit by another strategy uses sampling/emitter_pdf.h).
 float emitter_pdf_solid_angle(float select_pmf, float area, float distance, float cos_light) {
   if (!(area > 0.0)) return 0.0;
   return area_to_solid_angle_pdf(select_pmf / area, distance * distance, cos_light);

@@ -15,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,8 @@ struct Golden {
   std::string scene;
   std::string method;
 };
+
+void PrintTo(const Golden& g, std::ostream* os) { *os << g.scene << " / " << g.method; }
 
 std::string file_name(const Golden& g) { return g.scene + "-" + g.method + ".f32"; }
 
