@@ -81,8 +81,9 @@ json make_report(const LoadtestOptions& o, const RunInfo& run, const std::vector
   std::vector<double> create_ms, delete_ms, ttff_ms, gaps_ms, gpu_ms, fps;
   uint64_t sent = 0, received = 0, dropped = 0, coalesced = 0, unanswered = 0, resets = 0, own = 0;
   const int seconds = std::max(1, int(std::ceil(total_ms / 1000.0)));
-  std::vector<std::vector<double>> per_second_latency(size_t(seconds));
-  std::vector<uint64_t> per_second_sent(size_t(seconds)), per_second_frames(size_t(seconds));
+  const size_t n_seconds = size_t(seconds);
+  std::vector<std::vector<double>> per_second_latency(n_seconds);
+  std::vector<uint64_t> per_second_sent(n_seconds), per_second_frames(n_seconds);
   json per_session = json::array(), details = json::array();
   bool timed_out = false;
   std::optional<LoadClock::time_point> first_sent, last_sent;

@@ -7,7 +7,7 @@ namespace strata::http {
 
 std::string dashboard_page() {
   std::string html =
-      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>stratad dashboard</title>\n<style>\n";
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>stratad dashboard</title>\n<link rel=\"icon\" href=\"data:,\">\n<style>\n";
   html += assets::uplot_css();
   html += assets::dashboard_css();
   html += "</style>\n</head>\n<body>\n<header><h1>stratad</h1><span id=\"status\">connecting</span></header>\n"
