@@ -25,8 +25,10 @@ std::vector<MetricFamily> ServiceCollector::Collect() const {
   const auto& m = core_.metrics;
   const auto sessions = core_.registry.list();
   std::map<std::string, double> memory;
-  for (const auto& s : sessions)
-    for (const auto& [group, bytes] : s->describe(core_.config).memory().bytes_by_group()) memory[group] += double(bytes);
+  for (const auto& s : sessions) {
+    const v1::Session d = s->describe(core_.config);  // named: a temporary would die before the loop runs
+    for (const auto& [group, bytes] : d.memory().bytes_by_group()) memory[group] += double(bytes);
+  }
 
   std::vector<MetricFamily> out;
   out.push_back(one("strata_sessions_active", "Open sessions", MetricType::Gauge, double(sessions.size())));

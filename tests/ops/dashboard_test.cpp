@@ -28,7 +28,7 @@ struct PageState {
 
 PageState page_state(Chromium& browser) {
   const auto v = browser.evaluate(
-      "JSON.stringify({e: document.body.dataset.events, s: document.body.dataset.sessions, c: document.body.dataset.charts,"
+      "!document.body ? '{}' : JSON.stringify({e: document.body.dataset.events, s: document.body.dataset.sessions, c: document.body.dataset.charts,"
       " r: document.body.dataset.redraws, t: document.title,"
       " th: Array.from(document.querySelectorAll('img.thumb')).filter(i => i.src.startsWith('data:image/png;base64,')).length})");
   const auto j = nlohmann::json::parse(v.get<std::string>());
