@@ -23,6 +23,10 @@ FrameMetrics::FrameMetrics(prometheus::Registry& r)
                    .Name("strata_frame_latency_seconds")
                    .Help("Server-side frame latency: from the frame's input arriving to the frame rendered (queue wait + render)")
                    .Register(r)),
+      render_(prometheus::BuildHistogram()
+                  .Name("strata_frame_render_seconds")
+                  .Help("Wall time of rendering one frame on the server, readback included, by method")
+                  .Register(r)),
       pass_gpu_(prometheus::BuildHistogram()
                     .Name("strata_frame_pass_gpu_seconds")
                     .Help("GPU time of one pass of one frame (Vulkan timestamps), by pass")
@@ -68,6 +72,7 @@ void FrameMetrics::on_frame(const service::FrameEvent& e) {
   const auto& stats = f.result.stats;
   frames_.Add({{"method", e.method}}).Increment();
   latency_.Add({{"method", e.method}}, latency_buckets()).Observe((f.queued_ms + f.render_ms) / 1000.0);
+  render_.Add({{"method", e.method}}, latency_buckets()).Observe(f.render_ms / 1000.0);
   frame_gpu_.Add({{"method", e.method}}, gpu_buckets()).Observe(stats.gpu_ms_total / 1000.0);
   for (const auto& p : stats.pass_ms) pass_gpu_.Add({{"pass", p.pass}}, gpu_buckets()).Observe(p.ms / 1000.0);
   if (f.history_reset) resets_.Add({{"reason", reset_reason_label(f.history_reset_reason)}}).Increment();

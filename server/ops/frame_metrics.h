@@ -28,6 +28,7 @@ class FrameMetrics final : public service::FrameObserver {
  private:
   prometheus::Family<prometheus::Counter>& frames_;
   prometheus::Family<prometheus::Histogram>& latency_;
+  prometheus::Family<prometheus::Histogram>& render_;
   prometheus::Family<prometheus::Histogram>& pass_gpu_;
   prometheus::Family<prometheus::Histogram>& frame_gpu_;
   prometheus::Family<prometheus::Counter>& resets_;

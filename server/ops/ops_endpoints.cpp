@@ -10,6 +10,7 @@
 #include "ops/frame_metrics.h"
 #include "ops/grpc_metrics.h"
 #include "ops/service_collector.h"
+#include "ops/timed_observers.h"
 
 namespace strata::ops {
 
@@ -54,13 +55,17 @@ std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterfac
 }
 
 void OpsEndpoints::attach(service::Server& server) {
-  if (http_enabled()) {
-    hub_ = std::make_shared<http::DashboardHub>();
-    server.core().metrics.frame_observers.add(hub_);
-    http_ = std::make_unique<http::HttpServer>(options_.http_listen, server.core(), hub_);
+  auto& observers = server.core().metrics.frame_observers;
+  if (http_enabled()) hub_ = std::make_shared<http::DashboardHub>();
+  if (metrics_enabled()) {  // both observers under one timer (strata_frame_observer_seconds)
+    std::vector<std::shared_ptr<service::FrameObserver>> timed = {frames_};
+    if (hub_) timed.push_back(hub_);
+    observers.add(std::make_shared<TimedObservers>(*registry_, std::move(timed)));
+  } else if (hub_) {
+    observers.add(hub_);
   }
+  if (http_enabled()) http_ = std::make_unique<http::HttpServer>(options_.http_listen, server.core(), hub_);
   if (!metrics_enabled()) return;
-  server.core().metrics.frame_observers.add(frames_);
   collector_ = std::make_shared<ServiceCollector>(server.core());
   const auto [host, port] = split_listen(options_.metrics_listen, "--metrics-listen");
   try {

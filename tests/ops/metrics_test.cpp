@@ -61,6 +61,8 @@ TEST(MetricsTest, LivePagePassesPromtoolAndCountsTheTraffic) {
   EXPECT_EQ(sample_value(page, R"(strata_frames_rendered_total{method="restir-gather"})"), 3.0);
   EXPECT_EQ(sample_value(page, R"(strata_frame_latency_seconds_count{method="restir-gather"})"), 3.0);
   EXPECT_EQ(sample_value(page, R"(strata_history_resets_total{reason="first_frame"})"), 3.0);
+  EXPECT_EQ(sample_value(page, "strata_frame_observer_seconds_count"), double(6 + background_frames)) << "every frame timed";
+  EXPECT_EQ(sample_value(page, R"(strata_frame_render_seconds_count{method="restir-gather"})"), 3.0);
   EXPECT_EQ(sample_value(page, R"(strata_history_resets_total{reason="gpu_state_released"})"), -1.0) << "no stream was resumed";
   EXPECT_EQ(sample_value(page, "strata_sessions_created_total"), 3.0);
   EXPECT_EQ(sample_value(page, "strata_sessions_active"), 3.0);
