@@ -76,7 +76,8 @@ std::string frame_event_json(const service::FrameEvent& e, bool with_thumbnail) 
 
   // As the metrics do: the wire statistics name every method's counters, new ones included.
   v1::FrameStatistics wire;
-  service::fill_statistics(stats, &wire);
+  // Only methods with reuse fill the reuse statistics; the copy costs nothing for the others.
+  if (!stats.reuse.empty() || !stats.shift_failures.empty()) service::fill_statistics(stats, &wire);
   const auto& reuse = wire.reuse();
   nlohmann::json failures = nlohmann::json::object(), counters = nlohmann::json::object();
   for (const auto& [k, n] : reuse.shift_failures()) failures[k] = n;

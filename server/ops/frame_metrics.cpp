@@ -81,7 +81,8 @@ void FrameMetrics::on_frame(const service::FrameEvent& e) {
   // The wire form of the statistics is the one place where every method's counters are named;
   // reading it here picks up new statistics (multi-layer domains) as the renderer fills them.
   v1::FrameStatistics wire;
-  service::fill_statistics(stats, &wire);
+  // Only methods with reuse fill the reuse statistics; the copy costs nothing for the others.
+  if (!stats.reuse.empty() || !stats.shift_failures.empty()) service::fill_statistics(stats, &wire);
   const auto& reuse = wire.reuse();
   for (const auto& [key, n] : reuse.shift_failures()) {
     const auto dot = key.find('.');
