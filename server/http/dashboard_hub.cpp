@@ -2,17 +2,19 @@
 
 #include <algorithm>
 
-#include "http/frame_event_json.h"
 
 namespace strata::http {
 
 std::optional<std::string> DashboardHub::Viewer::next(std::chrono::milliseconds timeout) {
-  std::unique_lock lock(mu_);
-  cv_.wait_for(lock, timeout, [&] { return closed_ || !queue_.empty(); });
-  if (closed_ || queue_.empty()) return std::nullopt;
-  std::string e = std::move(queue_.front());
-  queue_.pop_front();
-  return e;
+  std::shared_ptr<const DashboardEvent> e;
+  {
+    std::unique_lock lock(mu_);
+    cv_.wait_for(lock, timeout, [&] { return closed_ || !queue_.empty(); });
+    if (closed_ || queue_.empty()) return std::nullopt;
+    e = std::move(queue_.front());
+    queue_.pop_front();
+  }
+  return e->text();  // the PNG and the text are made here, on the viewer's thread
 }
 
 bool DashboardHub::Viewer::closed() const {
@@ -56,7 +58,7 @@ size_t DashboardHub::viewers() const {
   return viewers_.size();
 }
 
-void DashboardHub::publish(const std::string& event) {
+void DashboardHub::publish(std::shared_ptr<const DashboardEvent> event) {
   std::vector<std::shared_ptr<Viewer>> all;
   {
     std::lock_guard lock(mu_);
@@ -89,7 +91,7 @@ void DashboardHub::on_frame(const service::FrameEvent& event) {
     if (last_thumbnail_.size() > 256)
       std::erase_if(last_thumbnail_, [&](const auto& e) { return now - e.second > std::chrono::minutes(1); });
   }
-  publish(frame_event_json(event, thumbnail));
+  publish(make_frame_event(event, thumbnail));
 }
 
 }  // namespace strata::http

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "http/frame_event_json.h"
 #include "service/frame_observer.h"
 
 namespace strata::http {
@@ -27,7 +28,7 @@ class DashboardHub final : public service::FrameObserver {
 
   class Viewer {
    public:
-    // The next event, waiting at most `timeout`; nullopt on timeout or once closed.
+    // The next event's text, waiting at most `timeout`; nullopt on timeout or once closed.
     std::optional<std::string> next(std::chrono::milliseconds timeout);
     bool closed() const;
     uint64_t dropped() const;
@@ -36,7 +37,7 @@ class DashboardHub final : public service::FrameObserver {
     friend class DashboardHub;
     mutable std::mutex mu_;
     std::condition_variable cv_;
-    std::deque<std::string> queue_;
+    std::deque<std::shared_ptr<const DashboardEvent>> queue_;
     uint64_t dropped_ = 0;
     bool closed_ = false;
   };
@@ -48,8 +49,9 @@ class DashboardHub final : public service::FrameObserver {
   void close_all();
 
   void on_frame(const service::FrameEvent& event) override;
-  // Publishes one event (a JSON object's text) to every viewer.
-  void publish(const std::string& event);
+  // Publishes one event to every viewer (shared: its text is made once, off the frame path).
+  void publish(std::shared_ptr<const DashboardEvent> event);
+  void publish(const std::string& text) { publish(std::make_shared<const DashboardEvent>(text)); }
 
   size_t viewers() const;
   uint64_t events_dropped() const { return dropped_.load(); }

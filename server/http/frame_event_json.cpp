@@ -29,10 +29,9 @@ std::string base64(const std::vector<uint8_t>& bytes) {
 
 }  // namespace
 
-std::string thumbnail_data_url(const service::FrameEvent& e, unsigned width) {
-  const image::Image& src = e.frame.result.image;
-  if (src.width == 0 || src.height == 0) return "";
+image::Image downscale(const image::Image& src, unsigned width) {
   image::Image t;
+  if (src.width == 0 || src.height == 0) return t;
   t.width = std::min(width, src.width);
   t.height = std::max(1u, unsigned(uint64_t(src.height) * t.width / src.width));
   t.rgba.assign(size_t(t.width) * t.height * 4, 0.0f);
@@ -49,10 +48,27 @@ std::string thumbnail_data_url(const service::FrameEvent& e, unsigned width) {
       for (int c = 0; c < 4; ++c) out[c] /= n;
     }
   }
-  return "data:image/png;base64," + base64(image::encode_png_preview(t, e.frame.exposure));
+  return t;
 }
 
-std::string frame_event_json(const service::FrameEvent& e, bool with_thumbnail) {
+std::string png_data_url(const image::Image& img, float exposure) {
+  return "data:image/png;base64," + base64(image::encode_png_preview(img, exposure));
+}
+
+DashboardEvent::DashboardEvent(nlohmann::json fields, std::optional<image::Image> thumbnail, float exposure)
+    : fields_(std::move(fields)), thumbnail_(std::move(thumbnail)), exposure_(exposure) {}
+
+DashboardEvent::DashboardEvent(std::string text) : text_(std::move(text)) { std::call_once(once_, [] {}); }
+
+const std::string& DashboardEvent::text() const {
+  std::call_once(once_, [&] {
+    if (thumbnail_) fields_["thumbnail"] = png_data_url(*thumbnail_, exposure_);
+    text_ = fields_.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  });
+  return text_;
+}
+
+std::shared_ptr<const DashboardEvent> make_frame_event(const service::FrameEvent& e, bool with_thumbnail) {
   const auto& f = e.frame;
   const auto& stats = f.result.stats;
   nlohmann::json j;
@@ -90,8 +106,9 @@ std::string frame_event_json(const service::FrameEvent& e, bool with_thumbnail) 
                   {"disoccluded", reuse.disoccluded_pixels()},
                   {"covered", reuse.disoccluded_covered()},
                   {"coverage_rate", reuse.coverage_rate()}};
-  if (with_thumbnail) j["thumbnail"] = thumbnail_data_url(e, k_thumbnail_width);
-  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  std::optional<image::Image> thumbnail;
+  if (with_thumbnail && f.result.image.width > 0) thumbnail = downscale(f.result.image, k_thumbnail_width);
+  return std::make_shared<const DashboardEvent>(std::move(j), std::move(thumbnail), f.exposure);
 }
 
 }  // namespace strata::http
