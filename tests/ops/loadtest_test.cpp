@@ -2,11 +2,14 @@
 // + dropped + coalesced + errors), report.json carries ghz's field names, RESOURCE_EXHAUSTED is
 // counted (not a crash) when -c exceeds max_sessions, --rps holds the rate within 10% when the
 // server keeps up (pt at 32x32, a low rate, so that a loaded 2-core machine keeps up), and bad
-// flags are refused naming the flag and its limit.
+// flags are refused naming the flag and its limit. report.html draws in headless Chromium.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
+#include "cdp_pipe.h"
 #include "harness.h"
 #include "ops_util.h"
 
@@ -95,6 +98,18 @@ TEST(LoadtestTest, CountsAddUpAndTheReportHasGhzFields) {
   EXPECT_NE(html.find("uPlot"), std::string::npos);
   EXPECT_EQ(html.find("<script src"), std::string::npos);
   EXPECT_EQ(html.find("http://"), std::string::npos);
+
+  // And it draws its three plots in headless Chromium with no network and nothing on the console.
+  const std::string chromium = tool_path("STRATA_CHROMIUM", "/usr/bin/chromium");
+  ASSERT_EQ(::access(chromium.c_str(), X_OK), 0) << chromium << " is not installed (deploy/install-deps.sh)";
+  Chromium browser(chromium, dir.path, 1200, 1000);
+  browser.open("file://" + (dir.path / "report.html").string());
+  nlohmann::json state;
+  EXPECT_TRUE(wait_until([&] {
+    state = browser.evaluate("document.body ? [document.body.dataset.plots || '', document.title] : ['', '']");
+    return state[0] == "3" && state[1].get<std::string>().ends_with("[ready]");
+  }, 30s)) << state.dump();
+  for (const auto& m : browser.page_messages()) ADD_FAILURE() << "report.html wrote to the console: " << m;
 }
 
 TEST(LoadtestTest, ResourceExhaustedIsCountedWhenSessionsExceedTheLimit) {
