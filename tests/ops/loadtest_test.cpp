@@ -145,6 +145,24 @@ TEST(LoadtestTest, RpsHoldsTheRateWithinTenPercent) {
   expect_counts_add_up(r);
 }
 
+TEST(LoadtestTest, StepScheduleRaisesTheRateEachStep) {
+  TempDir dir;
+  Daemon daemon;
+  // 4 frames/s, +4 every second, for 3 s: 4 + 8 + 12 frames scheduled, by the second they were due.
+  const json r = run_loadtest(loadtest_args(daemon.address(), dir.path, {"-c", "2", "-z", "3", "--load-schedule", "step",
+                                                                          "--load-start", "4", "--load-step", "4",
+                                                                          "--load-step-duration", "1"}),
+                              dir.path);
+  ASSERT_TRUE(r.contains("strata"));
+  EXPECT_EQ(r["count"], 24);
+  const auto& per_second = r["strata"]["per_second"];
+  ASSERT_GE(per_second.size(), 3u);
+  EXPECT_EQ(per_second[0]["inputs_sent"], 4);
+  EXPECT_EQ(per_second[1]["inputs_sent"], 8);
+  EXPECT_EQ(per_second[2]["inputs_sent"], 12);
+  expect_counts_add_up(r);
+}
+
 TEST(LoadtestTest, BadFlagsNameTheFlagAndTheLimit) {
   TempDir dir;
   const auto zero = run_process(loadtest_args("127.0.0.1:1", dir.path, {"-c", "0", "-n", "5"}), 30s);
@@ -155,6 +173,8 @@ TEST(LoadtestTest, BadFlagsNameTheFlagAndTheLimit) {
   EXPECT_NE(unbounded.output.find("-n/--total"), std::string::npos) << unbounded.output;
   const auto rate = run_process(loadtest_args("127.0.0.1:1", dir.path, {"-n", "5", "--rps", "20000"}), 30s);
   EXPECT_NE(rate.output.find("--rps = 20000 must be in 0..10000"), std::string::npos) << rate.output;
+  const auto schedule = run_process(loadtest_args("127.0.0.1:1", dir.path, {"-z", "5", "--load-schedule", "ramp"}), 30s);
+  EXPECT_NE(schedule.output.find("--load-schedule = 'ramp' is not one of const, step, line"), std::string::npos) << schedule.output;
 }
 
 }  // namespace
