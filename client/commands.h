@@ -11,5 +11,6 @@ using Runner = std::function<int()>;
 Runner add_stream_command(CLI::App& app);
 Runner add_health_command(CLI::App& app);
 Runner add_eval_command(CLI::App& app);
+Runner add_loadtest_command(CLI::App& app);
 
 }  // namespace strata::client

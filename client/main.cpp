@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   add(&strata::client::add_stream_command);
   add(&strata::client::add_health_command);
   add(&strata::client::add_eval_command);
+  add(&strata::client::add_loadtest_command);
   CLI11_PARSE(app, argc, argv);
   try {
     for (auto* sub : app.get_subcommands()) return runners.at(sub)();

@@ -37,6 +37,7 @@ PKGS=(
   libssl-dev
   python3
   chromium
+  prometheus-cpp-dev libcivetweb-dev prometheus
 )
 # npm runs at build time (uPlot for the eval report, client/report/web); Debian's nodejs and npm
 # only when no npm is on PATH already (a newer Node may be installed some other way).

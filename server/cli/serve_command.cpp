@@ -12,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "gpu/context.h"
+#include "ops/ops_endpoints.h"
 #include "service/server.h"
 
 namespace strata::cli {
@@ -24,6 +25,7 @@ struct ServeArgs {
   std::string port_file;
   std::string device;
   bool validation = false;
+  ops::OpsOptions ops;  // --metrics-listen, --http
 };
 
 void write_port_file(const std::string& path, int port) {
@@ -47,16 +49,21 @@ int run_serve(ServeArgs& a) {
   a.config.idle_timeout = std::chrono::milliseconds(int64_t(a.idle_timeout_s * 1000.0));
   a.config.drain_timeout = std::chrono::milliseconds(int64_t(a.drain_timeout_s * 1000.0));
   a.config.validate();
+  ops::OpsEndpoints ops(a.ops);  // before the server: its interceptor sees every call; destroyed after it
   gpu::Context ctx({a.device, a.validation});
-  service::Server server(ctx, a.config);
+  service::Server server(ctx, a.config, ops.interceptors());
+  ops.attach(server);
   if (!a.port_file.empty()) write_port_file(a.port_file, server.port());
   std::cout << "stratad: serving strata.v1.RenderService on " << server.address() << " (device: " << ctx.device_name()
             << ")" << std::endl;
+  if (ops.metrics_enabled()) std::cout << "stratad: metrics on http://" << ops.metrics_address() << "/metrics" << std::endl;
+  if (ops.http_enabled()) std::cout << "stratad: dashboard on http://" << ops.http_address() << "/dashboard" << std::endl;
 
   int sig = 0;
   sigwait(&signals, &sig);
   std::cout << "stratad: " << strsignal(sig) << ": draining" << std::endl;
   server.drain();
+  ops.stop();  // the pages read the service: they stop before it goes
   std::cout << "stratad: stopped" << std::endl;
   return 0;
 }
@@ -86,6 +93,8 @@ Runner add_serve_command(CLI::App& app) {
                   "directory of cached references (default: $XDG_CACHE_HOME/strata/references, else ~/.cache/strata/references)");
   cmd->add_option("--device", a->device, "Vulkan device name substring (default: $STRATA_DEVICE, else lavapipe)");
   cmd->add_flag("--validation", a->validation, "enable the Khronos validation layer");
+  cmd->add_option("--metrics-listen", a->ops.metrics_listen, "host:port of the Prometheus /metrics page (e.g. 127.0.0.1:9464; off when not given)");
+  cmd->add_option("--http", a->ops.http_listen, "host:port of the live dashboard (/dashboard, /events) and probes (/healthz, /readyz); off when not given");
   return [a] { return run_serve(*a); };
 }
 

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <utility>
 
+#include "service/frame_observer.h"
+
 namespace strata::service {
 
 struct ServiceMetrics {
@@ -14,6 +16,7 @@ struct ServiceMetrics {
   std::atomic<uint64_t> inputs_coalesced{0};
   std::atomic<int64_t> buffered_frame_bytes{0};  // rendered frames in slots, being encoded or written
   std::atomic<uint32_t> streams{0};
+  FrameObservers frame_observers;  // told of every rendered frame (metrics exporter, dashboard)
 };
 
 // Holds `bytes` on a gauge for as long as it lives (moves carry the bytes along).

@@ -18,7 +18,8 @@ std::string host_of(const std::string& listen) {
 
 }  // namespace
 
-Server::Server(const gpu::Context& ctx, ServiceConfig config) {
+Server::Server(const gpu::Context& ctx, ServiceConfig config,
+               std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> interceptors) {
   config.validate();
   core_ = std::make_unique<ServiceCore>(ctx, std::move(config));
   service_ = std::make_unique<RenderServiceImpl>(*core_);
@@ -29,6 +30,7 @@ Server::Server(const gpu::Context& ctx, ServiceConfig config) {
   grpc::ServerBuilder builder;
   builder.AddListeningPort(cfg.listen, grpc::InsecureServerCredentials(), &port_);
   builder.RegisterService(service_.get());
+  if (!interceptors.empty()) builder.experimental().SetInterceptorCreators(std::move(interceptors));
   builder.SetMaxReceiveMessageSize(int(cfg.limits.max_scene_bytes) + k_slack_bytes);
   builder.SetMaxSendMessageSize(int(max_frame_bytes(cfg.limits.max_pixels)));
   // Dead clients are noticed (and their sessions' GPU state freed) within about 30 s.

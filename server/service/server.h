@@ -7,8 +7,10 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <grpcpp/grpcpp.h>
+#include <grpcpp/support/server_interceptor.h>
 
 #include "gpu/context.h"
 #include "service/config.h"
@@ -21,7 +23,9 @@ class Server {
  public:
   // Listens on config.listen (port 0: a free port) and serves until drain() or destruction.
   // Throws std::invalid_argument for a bad configuration, std::runtime_error when it cannot listen.
-  Server(const gpu::Context& ctx, ServiceConfig config);
+  // `interceptors` see every call (the metrics exporter's, server/ops).
+  Server(const gpu::Context& ctx, ServiceConfig config,
+         std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> interceptors = {});
   ~Server();
   Server(const Server&) = delete;
   Server& operator=(const Server&) = delete;

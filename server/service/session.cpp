@@ -231,6 +231,7 @@ RenderedFrame Session::render(PendingInput input) {
   metrics_.frames_rendered.fetch_add(1);
   metrics_.inputs_coalesced.fetch_add(input.coalesced);
   f.held = GaugeHold(metrics_.buffered_frame_bytes, int64_t(f.result.image.rgba.size() * sizeof(float)));
+  metrics_.frame_observers.notify({name_, scene_->name, settings_.method, f});
   return f;
 }
 

@@ -1,0 +1,106 @@
+#include "http/http_server.h"
+
+#include <stdexcept>
+#include <vector>
+
+#include <CivetServer.h>
+
+namespace strata::http {
+namespace {
+
+constexpr auto k_keepalive = std::chrono::seconds(10);  // a comment line: notices viewers that left
+
+bool send_all(mg_connection* conn, const std::string& text) { return mg_write(conn, text.data(), text.size()) == int(text.size()); }
+
+void respond(mg_connection* conn, int status, const char* reason, const char* type, const std::string& body) {
+  mg_printf(conn,
+            "HTTP/1.1 %d %s\r\nContent-Type: %s\r\nContent-Length: %zu\r\nCache-Control: no-store\r\nConnection: close\r\n\r\n",
+            status, reason, type, body.size());
+  send_all(conn, body);
+}
+
+class PageHandler final : public CivetHandler {
+ public:
+  bool handleGet(CivetServer*, mg_connection* conn) override {
+    respond(conn, 200, "OK", "text/html; charset=utf-8", page_);
+    return true;
+  }
+
+ private:
+  const std::string page_ = dashboard_page();
+};
+
+class EventsHandler final : public CivetHandler {
+ public:
+  explicit EventsHandler(std::shared_ptr<DashboardHub> hub) : hub_(std::move(hub)) {}
+  bool handleGet(CivetServer*, mg_connection* conn) override {
+    auto viewer = hub_->subscribe();
+    if (!viewer) {
+      respond(conn, 503, "Service Unavailable", "text/plain",
+              "too many dashboard viewers (at most " + std::to_string(DashboardHub::k_max_viewers) + ")\n");
+      return true;
+    }
+    mg_printf(conn, "HTTP/1.1 200 OK\r\nContent-Type: text/event-stream\r\nCache-Control: no-store\r\nConnection: close\r\n\r\n");
+    bool ok = send_all(conn, "retry: 2000\n\n");
+    auto last_write = std::chrono::steady_clock::now();
+    while (ok && !viewer->closed()) {
+      auto event = viewer->next(std::chrono::milliseconds(500));
+      if (event) {
+        ok = send_all(conn, "data: " + *event + "\n\n");
+        last_write = std::chrono::steady_clock::now();
+      } else if (std::chrono::steady_clock::now() - last_write >= k_keepalive) {
+        ok = send_all(conn, ": keepalive\n\n");
+        last_write = std::chrono::steady_clock::now();
+      }
+    }
+    hub_->unsubscribe(viewer);
+    return true;
+  }
+
+ private:
+  std::shared_ptr<DashboardHub> hub_;
+};
+
+class ProbeHandler final : public CivetHandler {
+ public:
+  ProbeHandler(service::ServiceCore& core, bool readiness) : core_(core), readiness_(readiness) {}
+  bool handleGet(CivetServer*, mg_connection* conn) override {
+    if (readiness_ && core_.draining.load()) respond(conn, 503, "Service Unavailable", "text/plain", "draining\n");
+    else respond(conn, 200, "OK", "text/plain", "ok\n");
+    return true;
+  }
+
+ private:
+  service::ServiceCore& core_;
+  const bool readiness_;
+};
+
+}  // namespace
+
+HttpServer::HttpServer(const std::string& listen, service::ServiceCore& core, std::shared_ptr<DashboardHub> hub) : hub_(std::move(hub)) {
+  // Enough workers for every viewer's event stream plus pages and probes.
+  const std::vector<std::string> options = {"listening_ports", listen, "num_threads", std::to_string(DashboardHub::k_max_viewers + 4)};
+  try {
+    server_ = std::make_unique<CivetServer>(options);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("--http = '" + listen + "': cannot listen (" + e.what() + ")");
+  }
+  handlers_.push_back(std::make_unique<PageHandler>());
+  server_->addHandler("/dashboard", handlers_.back().get());
+  handlers_.push_back(std::make_unique<EventsHandler>(hub_));
+  server_->addHandler("/events", handlers_.back().get());
+  handlers_.push_back(std::make_unique<ProbeHandler>(core, false));
+  server_->addHandler("/healthz", handlers_.back().get());
+  handlers_.push_back(std::make_unique<ProbeHandler>(core, true));
+  server_->addHandler("/readyz", handlers_.back().get());
+  const auto ports = server_->getListeningPorts();
+  const auto colon = listen.rfind(':');
+  address_ = listen.substr(0, colon) + ":" + std::to_string(ports.empty() ? 0 : ports.front());
+}
+
+HttpServer::~HttpServer() {
+  hub_->close_all();  // the event streams return, so civetweb's workers can stop
+  server_.reset();
+}
+
+}  // namespace strata::http
