@@ -44,6 +44,8 @@ std::map<std::string, grpc::StatusCode> call_every_method(v1::RenderService::Stu
   ref.mutable_resolution()->set_width(8);
   ref.mutable_resolution()->set_height(8);
   ref.set_spp(1);
+  ref.set_max_depth(4);
+  ref.mutable_frame()->set_animation_frame(0);
   ref.set_encoding(v1::IMAGE_ENCODING_RAW_RGBA16F);
   v1::Reference reference;
   unary("RenderReference", [&](grpc::ClientContext& c) { return stub.RenderReference(&c, ref, &reference); });
@@ -71,6 +73,7 @@ class AuthTest : public ServiceTest {
   void SetUp() override {
     std::ofstream(token_dir_.path / "token") << k_token << "\n";  // a final newline is not part of it
     config_.security.auth_token_file = token_dir_.path / "token";
+    config_.reference_cache = token_dir_.path / "references";  // not the user's cache
     ServiceTest::SetUp();
   }
   TempDir token_dir_;
@@ -92,7 +95,7 @@ TEST_F(AuthTest, WithoutATokenEveryMethodIsUnauthenticated) {
 }
 
 TEST_F(AuthTest, WrongOrMalformedTokensAreUnauthenticated) {
-  for (const std::string auth : {"Bearer wrong-token-0123456789abcdef", "Bearer " + std::string(k_token) + "x",
+  for (const std::string& auth : std::vector<std::string>{"Bearer wrong-token-0123456789abcdef", "Bearer " + std::string(k_token) + "x",
                                  "Bearer " + std::string(k_token).substr(1), std::string(k_token), "Basic " + std::string(k_token),
                                  std::string("Bearer ")}) {
     SCOPED_TRACE(auth);

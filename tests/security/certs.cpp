@@ -11,7 +11,7 @@ namespace {
 
 // P-256 keys: generated in milliseconds, unlike RSA.
 void run_openssl(const std::filesystem::path& dir, const std::string& script) {
-  const auto r = run_process({"bash", "-c", "set -euo pipefail; cd '" + dir.string() + "'; " + script}, 60s);
+  const auto r = run_process({"/bin/bash", "-c", "set -euo pipefail; cd '" + dir.string() + "'; " + script}, 60s);
   if (r.exit_code != 0) throw std::runtime_error("openssl failed:\n" + r.output);
 }
 
