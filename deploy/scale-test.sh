@@ -77,7 +77,8 @@ start_client() {  # id frames
 frames_of() { ls "$tmp/$1" 2>/dev/null | grep -c '^frame_.*\.exr$' || true; }
 instance_of() { sed -n 's/.*, instance \([^)]*\)).*/\1/p' "$tmp/client-$1.log" | head -n 1; }
 running() { kill -0 "${client_pid[$1]}" 2>/dev/null; }
-exit_of() { local rc=0; wait "${client_pid[$1]}" || rc=$?; echo $rc; }
+# Sets rc to the client's exit status (not in a $(...) subshell: only this shell can wait for it).
+exit_of() { rc=0; wait "${client_pid[$1]}" || rc=$?; }
 wait_streaming() {  # ids...: created and at least 2 frames each
   for id in "$@"; do
     until [ -n "$(instance_of "$id")" ] && [ "$(frames_of "$id")" -ge 2 ]; do
@@ -104,7 +105,7 @@ victim=s2
 late=()
 for n in $(seq 1 $late_sessions); do late+=("late-$n"); start_client "late-$n" 3; done
 for id in "${late[@]}"; do
-  rc=$(exit_of "$id")
+  exit_of "$id"
   [ "$rc" = 0 ] || fail "$id (started during the drain) failed: $(tail -n 2 "$tmp/client-$id.log")"
   inst=$(instance_of "$id")
   [ "$inst" != "$drained" ] || fail "$id went to the drained daemon $drained"
@@ -120,10 +121,11 @@ for id in "${wave1[@]}"; do running "$id" || fail "$id finished before the kill:
 declare -A before
 for id in "${others[@]}"; do before[$id]=$(frames_of "$id"); done
 kill -9 "${daemon_pid[$victim]}"
+{ wait "${daemon_pid[$victim]}"; } 2>/dev/null || true  # reaped here, quietly
 echo "scale-test: killed $victim (${#victims[@]} sessions)"
 for id in "${victims[@]}"; do
   until ! running "$id"; do check_time "$id ends after the kill"; sleep 0.1; done
-  rc=$(exit_of "$id")
+  exit_of "$id"
   [ "$rc" != 0 ] || fail "$id's daemon was killed but it exited 0"
   grep -q "UNAVAILABLE" "$tmp/client-$id.log" || fail "$id did not report UNAVAILABLE: $(tail -n 2 "$tmp/client-$id.log")"
 done
@@ -136,7 +138,7 @@ done
 # ---- the others (the drained daemon's included) finish normally, each on one daemon ----------
 for id in "${others[@]}"; do
   until ! running "$id"; do check_time "$id finishes"; sleep 0.2; done
-  rc=$(exit_of "$id")
+  exit_of "$id"
   [ "$rc" = 0 ] || fail "$id (on ${client_instance[$id]}) failed: $(tail -n 2 "$tmp/client-$id.log")"
   [ "$(frames_of "$id")" -eq "$frames" ] || fail "$id got $(frames_of "$id") of $frames frames"
   python3 - "$tmp/$id/frames.json" "${client_instance[$id]}" <<'PY' || fail "$id: its calls reached more than one daemon"

@@ -34,7 +34,7 @@ case "$mode" in
     dict=()
     if [ -f "$here/dict/$target.dict" ]; then dict=(-dict="$here/dict/$target.dict"); fi
     # -timeout: one input taking seconds is a finding too (a client could stall a daemon's thread).
-    "$bin" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
+    "$bin" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=512 -max_len=65536 -print_final_stats=1 \
       -artifact_prefix="$build/crashes/$target/" "${dict[@]}" "$work" "$here/corpus/$target" > "$work/log" 2>&1 || {
       tail -n 60 "$work/log"; echo "run-fuzz: $target: FAILED; the input is in $build/crashes/$target/" >&2; exit 1; }
     grep -E "^stat::(number_of_executed_units|average_exec_per_sec|new_units_added|peak_rss_mb)" "$work/log" | tee "$build/stats-$target.txt"
