@@ -1,11 +1,11 @@
 # fuzz: the libFuzzer targets of tests/fuzz/CMakeLists.txt, a clang tree of its own that
 # tests/fuzz/run-fuzz.sh builds under the main build directory (the gcc build is unaffected).
 # fuzz.build builds them once (a fixture); each fuzz.TARGET replays its regression inputs and then
-# fuzzes for STRATA_FUZZ_SECONDS (default 12) from the checked-in seed corpus.
+# fuzzes for STRATA_FUZZ_SECONDS (default 10) from the checked-in seed corpus.
 find_program(STRATA_CLANGXX clang++)
 if(STRATA_CLANGXX)
   set(STRATA_FUZZ_DIR ${CMAKE_BINARY_DIR}/fuzz)
-  set(STRATA_FUZZ_SECONDS 12 CACHE STRING "seconds each fuzz target runs in ctest -L fuzz")
+  set(STRATA_FUZZ_SECONDS 10 CACHE STRING "seconds each fuzz target runs in ctest -L fuzz")
   add_test(NAME fuzz.build COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/run-fuzz.sh build ${STRATA_FUZZ_DIR})
   set_tests_properties(fuzz.build PROPERTIES LABELS fuzz TIMEOUT 900 FIXTURES_SETUP strata_fuzz_build)
   foreach(target gltf create_session frame_input camera_path exr)

@@ -22,7 +22,7 @@ constexpr int k_clients = 6;
 
 int soak_seconds() {
   const char* s = std::getenv("STRATA_SOAK_SECONDS");
-  return s ? std::max(5, std::atoi(s)) : 45;
+  return s ? std::max(5, std::atoi(s)) : 30;
 }
 
 v1::CreateSessionRequest random_request(std::mt19937& rng) {
