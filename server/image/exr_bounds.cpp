@@ -1,5 +1,6 @@
 #include "image/exr_bounds.h"
 
+#include <algorithm>
 #include <map>
 #include <string>
 
@@ -58,14 +59,25 @@ size_t channel_list_size(Reader r) {
   return r.at - start;
 }
 
+size_t count_channels(Reader r) {
+  size_t n = 0;
+  while (!r.name().empty()) {
+    r.at += 16;
+    ++n;
+  }
+  return n;
+}
+
 }  // namespace
 
 void check_exr_header_bounds(std::span<const uint8_t> bytes) {
+  const int64_t max_samples = max_exr_pixels_for(bytes.size());
   Reader r{bytes};
   if (r.u32() != k_magic) return;  // not EXR: OpenEXR says so in its own words
   const bool multipart = (r.u32() & k_multipart_flag) != 0;
   for (;;) {
-    size_t attributes = 0;
+    size_t attributes = 0, channels = 0;
+    int64_t width = 0, height = 0;
     for (std::string name = r.name(); !name.empty(); name = r.name(), ++attributes) {
       const std::string type = r.name();
       if (type.empty()) r.fail("attribute '" + name + "' without a type");
@@ -78,10 +90,24 @@ void check_exr_header_bounds(std::span<const uint8_t> bytes) {
       if (natural != size)
         r.fail("attribute '" + name + "' of type " + type + " declares " + std::to_string(size) + " bytes but holds " +
                std::to_string(natural));
+      if (type == "chlist") channels += count_channels(r);
+      if (name == "dataWindow" && type == "box2i") {
+        Reader box = r;
+        const auto x0 = int32_t(box.u32()), y0 = int32_t(box.u32()), x1 = int32_t(box.u32()), y1 = int32_t(box.u32());
+        width = int64_t(x1) - x0 + 1;
+        height = int64_t(y1) - y0 + 1;
+      }
       r.at += size;
     }
+    if (attributes == 0) return;  // the empty header that ends a multi-part file's list
+    // OpenEXR sizes its line buffers from the data window (at least 32 lines: PIZ's chunk) and
+    // the channels before it reads a pixel, so a lying window costs memory at construction.
+    if (width <= 0 || height <= 0 || width > max_samples / std::max<int64_t>(height, 32) / std::max<int64_t>(int64_t(channels), 1))
+      throw ImageError("EXR header: a data window of " + std::to_string(width) + "x" + std::to_string(height) + " with " +
+                       std::to_string(channels) + " channels is empty or more than " + std::to_string(bytes.size()) +
+                       " bytes of EXR can hold");
     // A multi-part file lists headers until an empty one; a single-part file has one.
-    if (!multipart || attributes == 0) return;
+    if (!multipart) return;
   }
 }
 

@@ -9,7 +9,9 @@ namespace strata::image::detail {
 
 // Walks the header attributes as OpenEXR's C++ reader does and throws ImageError when one
 // declares more bytes than the file has left, a fixed-size or channel-list attribute declares a
-// size other than the one it holds, or the header is cut short. Leaves everything else to OpenEXR.
+// size other than the one it holds, the header is cut short, or its data window (times its
+// channels, and at least 32 lines) is more than max_exr_pixels_for(bytes) samples. Leaves
+// everything else to OpenEXR.
 void check_exr_header_bounds(std::span<const uint8_t> bytes);
 
 // The most pixels `file_bytes` of EXR can honestly hold: zlib (ZIP) compresses at most about
