@@ -28,7 +28,19 @@ std::string status_code_name(grpc::StatusCode code) {
   }
 }
 
-RpcError::RpcError(const std::string& method, const grpc::Status& status)
+grpc::Status as_seen_through_proxies(const grpc::Status& status) {
+  // A proxy (HAProxy) whose backend dies mid-call ends the client's HTTP/2 stream without gRPC
+  // trailers, which gRPC reports as UNKNOWN "No status received". Connected directly the same
+  // failure is UNAVAILABLE; report it so, saying what happened.
+  if (status.error_code() == grpc::StatusCode::UNKNOWN && status.error_message() == "No status received")
+    return {grpc::StatusCode::UNAVAILABLE, "the call ended without a status (the server, or the one behind a proxy, went away)"};
+  return status;
+}
+
+RpcError::RpcError(const std::string& method, const grpc::Status& raw)
+    : RpcError(method, as_seen_through_proxies(raw), 0) {}
+
+RpcError::RpcError(const std::string& method, const grpc::Status& status, int)
     : std::runtime_error(method + ": " + status_code_name(status.error_code()) + ": " + status.error_message()),
       code(status.error_code()) {}
 

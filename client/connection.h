@@ -12,9 +12,16 @@ namespace strata::client {
 
 // A failed RPC: the method, the status code's name and the server's message.
 struct RpcError : std::runtime_error {
-  RpcError(const std::string& method, const grpc::Status& status);
+  RpcError(const std::string& method, const grpc::Status& status);  // as_seen_through_proxies(status)
   grpc::StatusCode code;
+
+ private:
+  RpcError(const std::string& method, const grpc::Status& status, int);
 };
+
+// UNKNOWN "No status received" (a proxy's backend went away mid-call) as UNAVAILABLE; other
+// statuses as they are.
+grpc::Status as_seen_through_proxies(const grpc::Status& status);
 
 std::string status_code_name(grpc::StatusCode code);
 

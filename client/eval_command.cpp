@@ -55,7 +55,7 @@ std::string utc_now() {
 // The command line that reproduces this evaluation (every setting explicit).
 std::string command_line(const EvalArgs& a) {
   std::ostringstream s;
-  s << "strata eval --server " << a.server << " --scenes " << a.scene_list << " --methods " << a.method_list;
+  s << "strata eval --server " << a.conn.server << " --scenes " << a.scene_list << " --methods " << a.method_list;
   if (a.camera_path.empty()) s << " --frames " << a.frames;
   else s << " --camera-path " << a.camera_path;
   s << " --width " << a.width << " --height " << a.height << " --reference-spp " << a.reference_spp << " --reference-error "
@@ -196,12 +196,12 @@ int run_eval(EvalArgs& a, bool frames_given) {
   a.methods = split(a.method_list);
   prepare_eval_frames(a, frames_given);
   const auto start = Clock::now();
-  EvalClient client(a.server, a.timeout_s);
+  EvalClient client(a.conn, a.timeout_s);
   client.check(a);  // unknown scenes and methods, limits: before any work
   fs::create_directories(a.out);
 
   report::Report rep;
-  rep.meta = {{"server", a.server},
+  rep.meta = {{"server", a.conn.server},
               {"device", client.status().device()},
               {"date", utc_now()},
               {"resolution", {{"width", a.width}, {"height", a.height}}},
@@ -223,7 +223,7 @@ int run_eval(EvalArgs& a, bool frames_given) {
   const uint64_t per_scene = a.frames * (1 + a.methods.size() + (a.equal_time ? non_pt + (has_pt ? 0 : 1) : 0));
   Evaluation eval(a, client, per_scene * a.scenes.size());
   std::cerr << "strata: eval of " << a.scenes.size() << " scene(s) x " << a.methods.size() << " method(s), " << a.frames
-            << " frame(s) at " << a.width << "x" << a.height << " on " << client.status().device() << " (" << a.server << ")\n";
+            << " frame(s) at " << a.width << "x" << a.height << " on " << client.status().device() << " (" << a.conn.server << ")\n";
   for (const auto& scene : a.scenes) eval.scene(scene, rep);
   eval.finish(rep);
   rep.meta["wall_s"] = ms_since(start) / 1000.0;
@@ -244,7 +244,7 @@ int run_eval(EvalArgs& a, bool frames_given) {
 Runner add_eval_command(CLI::App& app) {
   auto a = std::make_shared<EvalArgs>();
   auto* cmd = app.add_subcommand("eval", "error against run time: methods vs converged references; results.csv/json, report.html");
-  cmd->add_option("--server", a->server, "stratad address host:port")->capture_default_str();
+  add_connection_flags(cmd, a->conn);
   cmd->add_option("--scenes", a->scene_list, "scenes, comma-separated (the server's ListScenes)")->capture_default_str();
   cmd->add_option("--methods", a->method_list, "methods, comma-separated (the server's status lists those available)")
       ->capture_default_str();

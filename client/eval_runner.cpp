@@ -29,16 +29,17 @@ image::Image decode(const v1::Image& img) {
 
 }  // namespace
 
-EvalClient::EvalClient(const std::string& address, double timeout_s) : address_(address), timeout_s_(timeout_s) {
-  auto stub = v1::RenderService::NewStub(connect(address));
+EvalClient::EvalClient(const ConnectionOptions& conn, double timeout_s) : address_(conn.server), timeout_s_(timeout_s) {
+  const std::string affinity = new_session_id();
+  auto stub = v1::RenderService::NewStub(open_channel(conn, affinity));
   {
     grpc::ClientContext ctx;
     set_deadline(ctx, std::chrono::seconds(30));
     auto st = stub->GetServerStatus(&ctx, {}, &status_);
-    if (!st.ok()) throw RpcError("GetServerStatus (" + address + ")", st);
+    if (!st.ok()) throw RpcError("GetServerStatus (" + address_ + ")", st);
   }
   // Frames and references are at most limits.max_frame_bytes.
-  stub_ = v1::RenderService::NewStub(connect(address, std::max<uint64_t>(status_.limits().max_frame_bytes(), 4u << 20)));
+  stub_ = v1::RenderService::NewStub(open_channel(conn, affinity, std::max<uint64_t>(status_.limits().max_frame_bytes(), 4u << 20)));
   grpc::ClientContext ctx;
   set_deadline(ctx, std::chrono::seconds(30));
   v1::ListScenesResponse scenes;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "connection_options.h"
 #include "image/image.h"
 #include "strata/v1/render.grpc.pb.h"
 
@@ -20,7 +21,7 @@ namespace strata::client {
 namespace v1 = ::strata::v1;
 
 struct EvalSettings {
-  std::string server = "127.0.0.1:50051";
+  ConnectionOptions conn;          // --server, TLS, token
   std::vector<std::string> scenes{"cornell"}, methods{"pt", "restir-gather"};
   uint32_t frames = 8, width = 256, height = 256, seed = 0;
   uint32_t max_depth = 0;          // 0: the server's default
@@ -52,8 +53,10 @@ struct MethodImage {
 
 class EvalClient {
  public:
-  // Connects and reads the server's status (its limits size the channel for frames).
-  EvalClient(const std::string& address, double timeout_s);
+  // Connects and reads the server's status (its limits size the channel for frames). Every call
+  // of one EvalClient carries the same x-strata-session, so that behind a session-affine proxy
+  // the references and the sessions of a run are on one daemon.
+  EvalClient(const ConnectionOptions& conn, double timeout_s);
 
   const v1::ServerStatus& status() const { return status_; }
   const std::string& address() const { return address_; }

@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "connection.h"
+#include "connection_options.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 
 namespace strata::client {
@@ -16,13 +17,13 @@ using grpc::health::v1::HealthCheckRequest;
 using grpc::health::v1::HealthCheckResponse;
 
 struct HealthArgs {
-  std::string server = "127.0.0.1:50051";
+  ConnectionOptions conn;
   std::string service;  // empty: the whole server
   double wait_s = 0.0;
 };
 
 int run_health(const HealthArgs& a) {
-  auto stub = grpc::health::v1::Health::NewStub(connect(a.server));
+  auto stub = grpc::health::v1::Health::NewStub(open_channel(a.conn));
   const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(int64_t(a.wait_s * 1000.0));
   for (;;) {
     grpc::ClientContext ctx;
@@ -33,8 +34,8 @@ int run_health(const HealthArgs& a) {
     const grpc::Status st = stub->Check(&ctx, req, &resp);
     const bool serving = st.ok() && resp.status() == HealthCheckResponse::SERVING;
     if (serving || std::chrono::steady_clock::now() >= until) {
-      if (st.ok()) std::cout << a.server << ": " << HealthCheckResponse::ServingStatus_Name(resp.status()) << "\n";
-      else std::cout << a.server << ": " << status_code_name(st.error_code()) << ": " << st.error_message() << "\n";
+      if (st.ok()) std::cout << a.conn.server << ": " << HealthCheckResponse::ServingStatus_Name(resp.status()) << "\n";
+      else std::cout << a.conn.server << ": " << status_code_name(st.error_code()) << ": " << st.error_message() << "\n";
       return serving ? 0 : 1;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -46,7 +47,7 @@ int run_health(const HealthArgs& a) {
 Runner add_health_command(CLI::App& app) {
   auto a = std::make_shared<HealthArgs>();
   auto* cmd = app.add_subcommand("health", "check a server's health (grpc.health.v1); exit 0 when SERVING");
-  cmd->add_option("--server", a->server, "stratad address host:port")->capture_default_str();
+  add_connection_flags(cmd, a->conn);
   cmd->add_option("--service", a->service, "service name (empty: the whole server)");
   cmd->add_option("--wait", a->wait_s, "seconds to keep asking until SERVING")->capture_default_str();
   return [a] { return run_health(*a); };

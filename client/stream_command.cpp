@@ -15,6 +15,7 @@
 #include "camera_path.h"
 #include "commands.h"
 #include "connection.h"
+#include "connection_options.h"
 #include "frame_files.h"
 #include "progress.h"
 #include "strata/v1/render.grpc.pb.h"
@@ -28,7 +29,8 @@ namespace v1 = strata::v1;
 using Clock = std::chrono::steady_clock;
 
 struct StreamArgs {
-  std::string server = "127.0.0.1:50051";
+  ConnectionOptions conn;  // --server, TLS, token
+  std::string session_id;  // empty: a fresh one (new_session_id)
   std::string scene = "cornell";
   std::string scene_file;  // a local .glb sent inline
   std::string scene_path;  // a file in the server's scene directory
@@ -149,30 +151,39 @@ int run_stream(const StreamArgs& a) {
   const v1::CreateSessionRequest request = make_request(a);
 
   // The server's limits first: the streaming channel takes frames up to limits.max_frame_bytes.
-  auto stub = v1::RenderService::NewStub(connect(a.server));
+  // Every call carries x-strata-session, so a session-affine proxy sends all of them (the status
+  // that sizes the channel included) to the daemon that will hold the session.
+  v1::CreateSessionRequest create = request;
+  create.set_session_id(a.session_id.empty() ? new_session_id() : a.session_id);
+  const std::string& affinity = create.session_id();
+  std::map<std::string, std::string> instances;  // call -> x-strata-instance that answered it
+  auto stub = v1::RenderService::NewStub(open_channel(a.conn, affinity));
   v1::ServerStatus status;
   {
     grpc::ClientContext ctx;
     set_deadline(ctx, std::chrono::seconds(30));
     auto st = stub->GetServerStatus(&ctx, {}, &status);
-    if (!st.ok()) throw RpcError("GetServerStatus (" + a.server + ")", st);
+    if (!st.ok()) throw RpcError("GetServerStatus (" + a.conn.server + ")", st);
+    instances["GetServerStatus"] = instance_of(ctx);
   }
   stub = v1::RenderService::NewStub(
-      connect(a.server, status.limits().max_frame_bytes(), request.ByteSizeLong() + (1u << 20)));
+      open_channel(a.conn, affinity, status.limits().max_frame_bytes(), create.ByteSizeLong() + (1u << 20)));
 
   v1::Session session;
   {
     grpc::ClientContext ctx;
     set_deadline(ctx, timeout);
-    auto st = stub->CreateSession(&ctx, request, &session);
+    auto st = stub->CreateSession(&ctx, create, &session);
     if (!st.ok()) throw RpcError("CreateSession", st);
+    instances["CreateSession"] = instance_of(ctx);
   }
   fs::create_directories(a.out);
   std::cerr << "strata: " << session.name() << ": '" << session.scene() << "' " << a.width << "x" << a.height << " "
-            << session.method() << " on " << status.device() << " (" << a.server << ")\n";
+            << session.method() << " on " << status.device() << " (" << a.conn.server << ", instance "
+            << instances["CreateSession"] << ")\n";
 
   nlohmann::json doc;
-  doc["server"] = {{"address", a.server}, {"device", status.device()}};
+  doc["server"] = {{"address", a.conn.server}, {"device", status.device()}, {"instance", instances["CreateSession"]}};
   doc["session"] = message_to_json(session);
   doc["frames"] = nlohmann::json::array();
 
@@ -201,6 +212,7 @@ int run_stream(const StreamArgs& a) {
       stream_ok = false;
       break;
     }
+    if (received == 0) instances["Stream"] = instance_of(stream_ctx);  // initial metadata came with the first frame
     const double latency = ms_since(sent_at.at(frame.input_sequence()));
     acked = frame.input_sequence();
     ++received;
@@ -236,7 +248,10 @@ int run_stream(const StreamArgs& a) {
     google::protobuf::Empty empty;
     auto dst = stub->DeleteSession(&ctx, del, &empty);
     if (!dst.ok()) throw RpcError("DeleteSession", dst);
+    instances["DeleteSession"] = instance_of(ctx);
   }
+  // Which daemon answered each call (behind a session-affine proxy: always the same one).
+  doc["server"]["instances"] = instances;
   std::ofstream(fs::path(a.out) / "frames.json") << doc.dump(2) << "\n";
   std::cout << "wrote " << received << " frame(s) of '" << session.scene() << "' to " << a.out << " (" << double(received) / wall
             << " fps, latency mean " << lat.mean << " ms, p95 " << lat.p95 << " ms)\n";
@@ -248,7 +263,8 @@ int run_stream(const StreamArgs& a) {
 Runner add_stream_command(CLI::App& app) {
   auto a = std::make_shared<StreamArgs>();
   auto* cmd = app.add_subcommand("stream", "stream frames of a scene from stratad serve; write EXR, PNG and frames.json");
-  cmd->add_option("--server", a->server, "stratad address host:port")->capture_default_str();
+  add_connection_flags(cmd, a->conn);
+  cmd->add_option("--session-id", a->session_id, "the session's id (sessions/{id}) and x-strata-session (default: a fresh random one)");
   cmd->add_option("--scene", a->scene, "built-in scene name")->capture_default_str();
   cmd->add_option("--scene-file", a->scene_file, "a local .glb file, sent inline");
   cmd->add_option("--scene-path", a->scene_path, "a .gltf/.glb file in the server's --scene-dir");

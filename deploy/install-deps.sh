@@ -36,6 +36,8 @@ PKGS=(
   libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev libpng-dev
   libssl-dev
   python3
+  # deploy/ and its tests (proxies, runtime API, manifest lint, certificates, libFuzzer)
+  haproxy nginx-light socat yamllint openssl clang libclang-rt-dev
   chromium
   prometheus-cpp-dev libcivetweb-dev prometheus
 )

@@ -55,7 +55,9 @@ int run_serve(ServeArgs& a) {
   ops.attach(server);
   if (!a.port_file.empty()) write_port_file(a.port_file, server.port());
   std::cout << "stratad: serving strata.v1.RenderService on " << server.address() << " (device: " << ctx.device_name()
-            << ")" << std::endl;
+            << "; instance " << server.instance_id() << (a.config.security.tls_cert.empty() ? "" : "; TLS")
+            << (a.config.security.tls_client_ca.empty() ? "" : " with client certificates")
+            << (a.config.security.auth_token_file.empty() ? "" : "; bearer token") << ")" << std::endl;
   if (ops.metrics_enabled()) std::cout << "stratad: metrics on http://" << ops.metrics_address() << "/metrics" << std::endl;
   if (ops.http_enabled()) std::cout << "stratad: dashboard on http://" << ops.http_address() << "/dashboard" << std::endl;
 
@@ -95,6 +97,14 @@ Runner add_serve_command(CLI::App& app) {
   cmd->add_flag("--validation", a->validation, "enable the Khronos validation layer");
   cmd->add_option("--metrics-listen", a->ops.metrics_listen, "host:port of the Prometheus /metrics page (e.g. 127.0.0.1:9464; off when not given)");
   cmd->add_option("--http", a->ops.http_listen, "host:port of the live dashboard (/dashboard, /events) and probes (/healthz, /readyz); off when not given");
+  // Scale-out and security (deploy/, service/auth_gate.h, service/tls_credentials.h).
+  auto& sec = c.security;
+  cmd->add_option("--instance-id", c.instance_id, "sent as x-strata-instance on every response (default: hostname-pid)");
+  cmd->add_option("--tls-cert", sec.tls_cert, "PEM certificate chain: serve over TLS (with --tls-key)");
+  cmd->add_option("--tls-key", sec.tls_key, "PEM private key of --tls-cert");
+  cmd->add_option("--tls-client-ca", sec.tls_client_ca, "PEM CA: require client certificates it signed (mutual TLS)");
+  cmd->add_option("--auth-token-file", sec.auth_token_file, "file holding the token every call must send as 'authorization: Bearer <token>'");
+  cmd->add_flag("--insecure", sec.insecure, "allow listening beyond loopback without TLS or a token");
   return [a] { return run_serve(*a); };
 }
 

@@ -1,5 +1,6 @@
 // EXR encode/decode through OpenEXR's general scanline API, so that AOVs can ride along as extra
 // FLOAT channels next to the HALF colour channels.
+#include <algorithm>
 #include <array>
 #include <climits>
 #include <exception>
@@ -13,6 +14,7 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 
+#include "image/exr_bounds.h"
 #include "image/exr_memory_stream.h"
 #include "image/image.h"
 #include "image/image_util.h"
@@ -55,14 +57,15 @@ auto convert_errors(const std::string& context, F&& f) {
   }
 }
 
-Image read_stream(Imf::IStream& stream, std::vector<Channel>* extra) {
+// `max_pixels`: kMaxPixels, or less for bytes in memory (detail::max_exr_pixels_for).
+Image read_stream(Imf::IStream& stream, std::vector<Channel>* extra, int64_t max_pixels = kMaxPixels) {
   Imf::InputFile file(stream);
   const Imath::Box2i dw = file.header().dataWindow();
   const int64_t w = int64_t(dw.max.x) - dw.min.x + 1;
   const int64_t h = int64_t(dw.max.y) - dw.min.y + 1;
-  if (w <= 0 || h <= 0 || w > kMaxPixels / h) {
+  if (w <= 0 || h <= 0 || w > max_pixels / h) {
     throw ImageError("data window of " + std::to_string(w) + "x" + std::to_string(h) +
-                     " pixels is empty or too large");
+                     " pixels is empty or too large (at most " + std::to_string(max_pixels) + " pixels here)");
   }
   const Imf::ChannelList& channels = file.header().channels();
   if (!channels.findChannel("R") && !channels.findChannel("G") && !channels.findChannel("B")) {
@@ -95,8 +98,9 @@ Image read_stream(Imf::IStream& stream, std::vector<Channel>* extra) {
 Image decode_bytes(std::span<const uint8_t> bytes, const std::string& name,
                    std::vector<Channel>* extra) {
   return convert_errors("cannot decode EXR '" + name + "'", [&] {
+    detail::check_exr_header_bounds(bytes);
     detail::MemoryIStream stream(bytes, name.c_str());
-    return read_stream(stream, extra);
+    return read_stream(stream, extra, std::min(kMaxPixels, detail::max_exr_pixels_for(bytes.size())));
   });
 }
 

@@ -19,8 +19,18 @@ struct ServiceLimits {
   uint32_t max_reference_spp = 65536;     // RenderReference: target samples per pixel
 };
 
+// Transport security and authentication (service/tls_credentials.cpp, service/auth_token.cpp).
+struct SecurityConfig {
+  std::filesystem::path tls_cert, tls_key;  // PEM; both or neither: TLS
+  std::filesystem::path tls_client_ca;      // PEM; with TLS: clients must present a certificate it signed (mTLS)
+  std::filesystem::path auth_token_file;    // every RenderService call needs `authorization: Bearer <token>`
+  bool insecure = false;                    // allow plaintext without a token beyond loopback
+};
+
 struct ServiceConfig {
   std::string listen = "127.0.0.1:50051";    // host:port; port 0 picks a free one
+  std::string instance_id;                   // sent as x-strata-instance on every response; empty: host:port
+  SecurityConfig security;
   std::filesystem::path scene_dir;           // allow-listed scene directory; empty refuses paths
   ServiceLimits limits;
   std::chrono::milliseconds idle_timeout{std::chrono::minutes(5)};  // idle sessions expire

@@ -38,7 +38,7 @@ grpc::Status RenderServiceImpl::CreateSession(grpc::ServerContext*, const v1::Cr
     spec.seed = req->seed();
     spec.encodings = check_encodings(req->encodings(), "encodings");
     if (!req->has_scene()) fail_invalid("scene is required: set scene.builtin, scene.path or scene.glb");
-    auto session = core_.registry.create([&](const std::string& name) {
+    auto session = core_.registry.create(req->session_id(), "session_id", [&](const std::string& name) {
       auto scene = load_scene_source(req->scene(), core_.config);
       return std::make_shared<Session>(name, std::move(scene), spec, core_.ctx, core_.metrics);
     });

@@ -9,7 +9,7 @@
 
 namespace strata::service {
 
-class RenderServiceImpl final : public v1::RenderService::WithCallbackMethod_Stream<v1::RenderService::Service> {
+class RenderServiceImpl : public v1::RenderService::WithCallbackMethod_Stream<v1::RenderService::Service> {
  public:
   explicit RenderServiceImpl(ServiceCore& core) : core_(core) {}
 

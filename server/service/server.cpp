@@ -2,8 +2,14 @@
 
 #include <stdexcept>
 
+#include <unistd.h>
+
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/health_check_service_interface.h>
+
+#include "service/auth_gate.h"
+#include "service/instance_interceptor.h"
+#include "service/tls_credentials.h"
 
 namespace strata::service {
 namespace {
@@ -16,21 +22,29 @@ std::string host_of(const std::string& listen) {
   return colon == std::string::npos ? listen : listen.substr(0, colon);
 }
 
+// hostname-pid: unique among the daemons of one machine and readable in a proxy's logs.
+std::string default_instance_id() {
+  char host[256] = {};
+  if (gethostname(host, sizeof host - 1) != 0) host[0] = 0;
+  return std::string(host[0] ? host : "stratad") + "-" + std::to_string(getpid());
+}
+
 }  // namespace
 
 Server::Server(const gpu::Context& ctx, ServiceConfig config,
                std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> interceptors) {
   config.validate();
   core_ = std::make_unique<ServiceCore>(ctx, std::move(config));
-  service_ = std::make_unique<RenderServiceImpl>(*core_);
   const auto& cfg = core_->config;
+  check_exposure(cfg.listen, cfg.security);  // before anything listens
+  const auto credentials = server_credentials(cfg.security);
+  service_ = make_render_service(*core_);  // gated by the bearer token when one is configured
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
-  builder.AddListeningPort(cfg.listen, grpc::InsecureServerCredentials(), &port_);
+  builder.AddListeningPort(cfg.listen, credentials, &port_);
   builder.RegisterService(service_.get());
-  if (!interceptors.empty()) builder.experimental().SetInterceptorCreators(std::move(interceptors));
   builder.SetMaxReceiveMessageSize(int(cfg.limits.max_scene_bytes) + k_slack_bytes);
   builder.SetMaxSendMessageSize(int(max_frame_bytes(cfg.limits.max_pixels)));
   // Dead clients are noticed (and their sessions' GPU state freed) within about 30 s.
@@ -38,6 +52,12 @@ Server::Server(const gpu::Context& ctx, ServiceConfig config,
   builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIMEOUT_MS, 10'000);
   builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_PERMIT_WITHOUT_CALLS, 1);
   builder.AddChannelArgument(GRPC_ARG_HTTP2_MIN_RECV_PING_INTERVAL_WITHOUT_DATA_MS, 5'000);
+  instance_id_ = cfg.instance_id.empty() ? default_instance_id() : cfg.instance_id;
+  // One list of interceptors (SetInterceptorCreators replaces, it does not add): x-strata-instance
+  // on every response, then the caller's (the ops metrics).
+  auto all = instance_interceptors(instance_id_);
+  for (auto& i : interceptors) all.push_back(std::move(i));
+  builder.experimental().SetInterceptorCreators(std::move(all));
   server_ = builder.BuildAndStart();
   if (!server_ || port_ == 0) throw std::runtime_error("cannot listen on " + cfg.listen);
   address_ = host_of(cfg.listen) + ":" + std::to_string(port_);

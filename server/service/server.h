@@ -32,6 +32,7 @@ class Server {
 
   const std::string& address() const { return address_; }  // host:port actually bound
   int port() const { return port_; }
+  const std::string& instance_id() const { return instance_id_; }  // x-strata-instance of every response
   ServiceCore& core() { return *core_; }
 
   // Graceful drain (SIGTERM): health NOT_SERVING; new sessions and streams refused with
@@ -47,6 +48,7 @@ class Server {
   std::unique_ptr<RenderServiceImpl> service_;
   std::unique_ptr<grpc::Server> server_;
   std::string address_;
+  std::string instance_id_;
   int port_ = 0;
   std::mutex mu_;
   std::condition_variable cv_;

@@ -32,32 +32,51 @@ std::string SessionRegistry::new_name() {
     uint64_t bits = rng();
     for (int i = 0; i < 16; ++i, bits >>= 4) id += digits[bits & 15];
     std::string name = k_prefix + id;
-    if (!sessions_.count(name) && !removed_.count(name)) return name;
+    if (!sessions_.count(name) && !removed_.count(name) && !reserved_names_.count(name)) return name;
   }
 }
 
 std::shared_ptr<Session> SessionRegistry::create(const std::function<std::shared_ptr<Session>(const std::string&)>& make) {
+  return create("", "session_id", make);
+}
+
+std::shared_ptr<Session> SessionRegistry::create(const std::string& requested_id, const std::string& field,
+                                                 const std::function<std::shared_ptr<Session>(const std::string&)>& make) {
+  if (!requested_id.empty()) check_session_id(requested_id, field);
   std::string name;
   {
     std::lock_guard lock(mu_);
+    if (!requested_id.empty()) {
+      name = k_prefix + requested_id;
+      if (sessions_.count(name) || reserved_names_.count(name))
+        fail(grpc::StatusCode::ALREADY_EXISTS, "session '" + name + "' already exists (" + field + " = '" + requested_id +
+                                                    "'); pick another id or delete that session first");
+    }
     if (sessions_.size() + reserved_ >= config_.limits.max_sessions)
       fail(grpc::StatusCode::RESOURCE_EXHAUSTED,
            "max_sessions = " + std::to_string(config_.limits.max_sessions) +
                " sessions are open; delete one (DeleteSession) or wait for idle ones to expire (idle_timeout = " +
                std::to_string(config_.idle_timeout.count()) + " ms)");
     ++reserved_;
-    name = new_name();
+    if (name.empty()) name = new_name();
+    ++reserved_names_[name];
   }
+  auto unreserve_locked = [&] {
+    --reserved_;
+    if (--reserved_names_[name] == 0) reserved_names_.erase(name);
+  };
   std::shared_ptr<Session> session;
   try {
     session = make(name);
   } catch (...) {
     std::lock_guard lock(mu_);
-    --reserved_;
+    unreserve_locked();
     throw;
   }
   std::lock_guard lock(mu_);
-  --reserved_;
+  unreserve_locked();
+  // A name reused after its session was removed is live again; NOT_FOUND must not call it removed.
+  removed_.erase(name);
   sessions_[name] = session;
   metrics_.sessions_created.fetch_add(1);
   return session;

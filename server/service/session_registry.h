@@ -13,6 +13,7 @@
 #include "service/config.h"
 #include "service/metrics.h"
 #include "service/session.h"
+#include "service/session_id.h"
 
 namespace strata::service {
 
@@ -23,6 +24,11 @@ class SessionRegistry {
   // Reserves a place (RESOURCE_EXHAUSTED naming max_sessions when every place is taken), then
   // calls make(name) outside the lock; its exceptions give the place back.
   std::shared_ptr<Session> create(const std::function<std::shared_ptr<Session>(const std::string& name)>& make);
+  // The same with the client's {session} id (CreateSessionRequest.session_id; empty: the server
+  // picks one): INVALID_ARGUMENT naming `field` for a malformed id, ALREADY_EXISTS when a live or
+  // reserved session has it.
+  std::shared_ptr<Session> create(const std::string& requested_id, const std::string& field,
+                                  const std::function<std::shared_ptr<Session>(const std::string& name)>& make);
   // INVALID_ARGUMENT for a malformed name (`field` names it), NOT_FOUND for unknown, deleted or expired.
   std::shared_ptr<Session> get(const std::string& name, const std::string& field) const;
   std::vector<std::shared_ptr<Session>> list() const;  // ordered by name
@@ -41,6 +47,7 @@ class SessionRegistry {
   mutable std::mutex mu_;
   std::map<std::string, std::shared_ptr<Session>> sessions_;
   uint32_t reserved_ = 0;
+  std::map<std::string, int> reserved_names_;  // names being created (make() runs outside the lock)
   std::map<std::string, std::string> removed_;  // name -> why, bounded
   std::deque<std::string> removed_order_;
 };
