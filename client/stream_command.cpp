@@ -17,6 +17,7 @@
 #include "connection.h"
 #include "connection_options.h"
 #include "frame_files.h"
+#include "loadtest_options.h"  // parse_encoding_list, shared with loadtest
 #include "progress.h"
 #include "strata/v1/render.grpc.pb.h"
 #include "util/summary.h"
@@ -57,20 +58,6 @@ struct StreamArgs {
 
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-std::vector<v1::ImageEncoding> parse_encodings(const std::string& list) {
-  static const std::map<std::string, v1::ImageEncoding> names = {
-      {"exr", v1::IMAGE_ENCODING_EXR_HALF}, {"raw", v1::IMAGE_ENCODING_RAW_RGBA16F}, {"png", v1::IMAGE_ENCODING_PNG_PREVIEW}};
-  std::vector<v1::ImageEncoding> out;
-  std::stringstream ss(list);
-  for (std::string item; std::getline(ss, item, ',');) {
-    auto it = names.find(item);
-    if (it == names.end()) throw std::runtime_error("--encodings: '" + item + "' is not one of exr, raw, png");
-    out.push_back(it->second);
-  }
-  if (out.empty()) throw std::runtime_error("--encodings is empty");
-  return out;
-}
-
 void set_restir_options(const StreamArgs::Restir& r, v1::RenderOptions& o) {
   if (r.shift == "reconnection") o.set_shift(v1::SHIFT_RECONNECTION);
   else if (r.shift == "hybrid") o.set_shift(v1::SHIFT_HYBRID);
@@ -110,7 +97,7 @@ v1::CreateSessionRequest make_request(const StreamArgs& a) {
   if (a.max_depth) req.mutable_options()->set_max_depth(a.max_depth);
   req.mutable_options()->set_exposure(a.exposure);
   set_restir_options(a.restir, *req.mutable_options());
-  for (auto e : parse_encodings(a.encodings)) req.add_encodings(e);
+  for (auto e : parse_encoding_list(a.encodings)) req.add_encodings(e);
   return req;
 }
 

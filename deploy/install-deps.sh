@@ -41,7 +41,7 @@ PKGS=(
   chromium
   prometheus-cpp-dev libcivetweb-dev prometheus
 )
-# npm runs at build time (uPlot for the eval report, client/report/web); Debian's nodejs and npm
+# npm runs at build time (uPlot for the eval report and the dashboard, cmake/uplot); Debian's nodejs and npm
 # only when no npm is on PATH already (a newer Node may be installed some other way).
 if ! command -v npm >/dev/null 2>&1; then PKGS+=(nodejs npm); fi
 $SUDO apt-get install -y -qq --no-install-recommends "${PKGS[@]}"

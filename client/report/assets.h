@@ -1,6 +1,6 @@
 #pragma once
 // Internal to strata_report: the web assets inlined into report.html, embedded at build time by
-// embed_assets.cmake (uPlot from the npm package pinned in web/package-lock.json, and the page's
+// cmake/embed_assets.cmake (uPlot from the npm package pinned in cmake/uplot/package-lock.json, and the page's
 // own script and style from web/).
 #include <string_view>
 

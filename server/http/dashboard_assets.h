@@ -1,6 +1,6 @@
 #pragma once
-// The dashboard's web assets, embedded at build time by embed_web.cmake: uPlot from the npm
-// package pinned in web/package-lock.json, and the page's own script and style from web/.
+// The dashboard's web assets, embedded at build time by cmake/embed_assets.cmake: uPlot from the npm
+// package pinned in cmake/uplot/package-lock.json, and the page's own script and style from web/.
 #include <string_view>
 
 namespace strata::http::assets {

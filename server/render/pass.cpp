@@ -7,8 +7,12 @@ constexpr VkDescriptorType k_storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 
 }  // namespace
 
+gpu::Buffer device_storage(const gpu::Context& ctx, size_t bytes, const std::string& name) {
+  return gpu::Buffer(ctx, bytes, gpu::k_storage_usage, gpu::Memory::Device, name.c_str());
+}
+
 PingPong::PingPong(const gpu::Context& ctx, size_t bytes, const std::string& name) {
-  for (auto& s : slots_) s = gpu::Buffer(ctx, bytes, gpu::k_storage_usage, gpu::Memory::Device, name.c_str());
+  for (auto& s : slots_) s = device_storage(ctx, bytes, name);
 }
 
 PassResource uniform(uint32_t binding, const gpu::Buffer& buffer) {

@@ -16,6 +16,9 @@
 
 namespace strata::render {
 
+// A device-local storage buffer of `bytes` (the per-session buffers of the ReSTIR stages).
+gpu::Buffer device_storage(const gpu::Context& ctx, size_t bytes, const std::string& name);
+
 // Two buffers that swap roles every frame: current(p) is written by frame parity p, previous(p)
 // holds what the frame before wrote (the history a temporal pass reads).
 class PingPong {

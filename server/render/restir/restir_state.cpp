@@ -27,10 +27,6 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
   return c;
 }
 
-gpu::Buffer device_storage(const gpu::Context& ctx, size_t bytes, const char* name) {
-  return gpu::Buffer(ctx, bytes, gpu::k_storage_usage, gpu::Memory::Device, name);
-}
-
 }  // namespace
 
 RestirState::RestirState(const SharedResources& shared_resources, const RenderSettings& render_settings, const MethodSpec& method)

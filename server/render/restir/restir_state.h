@@ -25,8 +25,7 @@ struct RestirState {
   const RenderSettings settings;
   const MethodSpec& spec;
   uint32_t width, height;
-  uint32_t layers = 1;        // pixel layers (domains per pixel)
-  uint64_t domains;           // width * height * layers
+  uint64_t domains;           // width * height: one layer (restir/domain.h)
 
   gpu::Buffer constants;      // GpuRestirConstants (uniform)
   gpu::Buffer work;           // per domain: canonical, then temporal output

@@ -18,10 +18,6 @@
 namespace strata::render {
 namespace {
 
-gpu::Buffer device_storage(const gpu::Context& ctx, size_t bytes, const char* name) {
-  return gpu::Buffer(ctx, bytes, gpu::k_storage_usage, gpu::Memory::Device, name);
-}
-
 class TemporalSplatStage : public Stage {
  public:
   explicit TemporalSplatStage(const RestirState& state)
