@@ -16,6 +16,9 @@ for i in 1 2; do
   pids+=($!)
 done
 for i in 1 2; do for _ in $(seq 600); do [ -s "$tmp/p$i" ] && break; sleep 0.1; done; [ -s "$tmp/p$i" ] || fail "stratad n$i did not start"; done
+# Both daemons serving before nginx sees them: a backend that fails nginx's passive check while it
+# starts is taken out for fail_timeout, and every session would then hash to the other one.
+for i in 1 2; do "$build/client/strata" health --server "127.0.0.1:$(cat "$tmp/p$i")" --wait 20 > /dev/null || fail "stratad n$i not serving"; done
 port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 sed -e "s/127.0.0.1:50061/127.0.0.1:$(cat "$tmp/p1")/" -e "s/127.0.0.1:50062/127.0.0.1:$(cat "$tmp/p2")/" -e "/127.0.0.1:50063/d" \
     -e "s/listen 127.0.0.1:50051 http2/listen 127.0.0.1:$port http2/" -e "s/^worker_processes auto;/worker_processes 1;\ndaemon off;/" \
