@@ -63,6 +63,7 @@ std::string command_line(const EvalArgs& a) {
   if (a.max_depth) s << " --max-depth " << a.max_depth;
   if (a.shutter) s << " --shutter " << *a.shutter;
   if (a.splats_per_frame) s << " --splats-per-frame " << *a.splats_per_frame;
+  if (const std::string r = restir_flags_text(a.restir); !r.empty()) s << " " << r;
   if (a.equal_time) s << " --equal-time";
   s << " --out " << a.out;
   return s.str();
@@ -216,6 +217,7 @@ int run_eval(EvalArgs& a, bool frames_given) {
               {"camera_path", a.camera_path.empty() ? nlohmann::json() : nlohmann::json(a.camera_path)},
               {"shutter", a.shutter ? nlohmann::json(*a.shutter) : nlohmann::json()},
               {"splats_per_frame", a.splats_per_frame ? nlohmann::json(*a.splats_per_frame) : nlohmann::json()},
+              {"restir_options", restir_flags_text(a.restir)},
               {"command_line", command_line(a)}};
   uint64_t non_pt = 0;
   for (const auto& m : a.methods) non_pt += m != "pt";
@@ -260,6 +262,7 @@ Runner add_eval_command(CLI::App& app) {
   auto* splats = cmd->add_option("--splats-per-frame", a->splats_value,
                                  "RenderOptions.splats_per_frame of the methods' sessions, 1..64 (restir-splat*: K splats "
                                  "over the shutter; default: the server's)");
+  add_restir_flags(cmd, a->restir);
   cmd->add_option("--width", a->width, "image width")->capture_default_str();
   cmd->add_option("--height", a->height, "image height")->capture_default_str();
   cmd->add_option("--reference-spp", a->reference_spp, "samples per pixel of each reference")->capture_default_str();

@@ -134,6 +134,7 @@ void EvalClient::run_method(const std::string& scene, const std::string& method,
   req.mutable_options()->set_spp(spp);
   if (s.max_depth) req.mutable_options()->set_max_depth(s.max_depth);
   if (s.splats_per_frame) req.mutable_options()->set_splats_per_frame(*s.splats_per_frame);
+  set_restir_options(s.restir, *req.mutable_options());
   req.add_encodings(v1::IMAGE_ENCODING_RAW_RGBA16F);
   v1::Session session;
   {

@@ -14,6 +14,7 @@
 
 #include "connection_options.h"
 #include "image/image.h"
+#include "restir_flags.h"
 #include "strata/v1/render.grpc.pb.h"
 
 namespace strata::client {
@@ -23,7 +24,7 @@ namespace v1 = ::strata::v1;
 struct EvalSettings {
   ConnectionOptions conn;          // --server, TLS, token
   std::vector<std::string> scenes{"cornell"}, methods{"pt", "restir-gather"};
-  uint32_t frames = 8, width = 256, height = 256, seed = 0;
+  uint32_t frames = 16, width = 256, height = 256, seed = 0;
   uint32_t max_depth = 0;          // 0: the server's default
   uint32_t reference_spp = 1024;
   float reference_error = 0.0f;    // 0: no early stop
@@ -32,6 +33,7 @@ struct EvalSettings {
   std::vector<v1::FrameInput> path;  // its entries, one per frame (eval_frames.h)
   std::optional<float> shutter;    // --shutter: every entry's camera.shutter
   std::optional<uint32_t> splats_per_frame;  // the sessions' RenderOptions.splats_per_frame (unset: the server's)
+  RestirFlags restir;              // the methods' ReSTIR options, those given (pt reports them as not applying)
   std::string out = "out/eval";
   double timeout_s = 3600.0;       // per RPC (a reference may take long on lavapipe)
 };

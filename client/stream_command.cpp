@@ -19,6 +19,7 @@
 #include "frame_files.h"
 #include "loadtest_options.h"  // parse_encoding_list, shared with loadtest
 #include "progress.h"
+#include "restir_flags.h"
 #include "strata/v1/render.grpc.pb.h"
 #include "util/summary.h"
 
@@ -45,35 +46,10 @@ struct StreamArgs {
   double timeout_s = 600.0;
   bool keep_session = false;
   bool frames_given = false;
-  // ReSTIR options (restir-* methods): sent only when given, so that the server's defaults apply.
-  struct Restir {
-    std::string shift, mis;  // empty: not given
-    float confidence_cap = 0.0f, spatial_radius = 0.0f;
-    uint32_t spatial_neighbors = 0, initial_candidates = 0, light_candidates = 0;
-    bool no_temporal = false, no_spatial = false, biased = false;
-    bool confidence_cap_given = false, spatial_radius_given = false, spatial_neighbors_given = false;
-    bool initial_candidates_given = false, light_candidates_given = false;
-  } restir;
+  RestirFlags restir;  // sent only when given, so that the server's defaults apply
 };
 
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
-void set_restir_options(const StreamArgs::Restir& r, v1::RenderOptions& o) {
-  if (r.shift == "reconnection") o.set_shift(v1::SHIFT_RECONNECTION);
-  else if (r.shift == "hybrid") o.set_shift(v1::SHIFT_HYBRID);
-  else if (!r.shift.empty()) throw std::runtime_error("--shift: '" + r.shift + "' is not one of reconnection, hybrid");
-  if (r.mis == "balance") o.set_mis(v1::MIS_BALANCE);
-  else if (r.mis == "pairwise") o.set_mis(v1::MIS_PAIRWISE);
-  else if (!r.mis.empty()) throw std::runtime_error("--mis: '" + r.mis + "' is not one of balance, pairwise");
-  if (r.confidence_cap_given) o.set_confidence_cap(r.confidence_cap);
-  if (r.spatial_neighbors_given) o.set_spatial_neighbors(r.spatial_neighbors);
-  if (r.spatial_radius_given) o.set_spatial_radius(r.spatial_radius);
-  if (r.initial_candidates_given) o.set_initial_candidates(r.initial_candidates);
-  if (r.light_candidates_given) o.set_light_candidates(r.light_candidates);
-  if (r.no_temporal) o.set_temporal_reuse(false);
-  if (r.no_spatial) o.set_spatial_reuse(false);
-  if (r.biased) o.set_unbiased(false);
-}
 
 v1::CreateSessionRequest make_request(const StreamArgs& a) {
   v1::CreateSessionRequest req;
@@ -272,26 +248,9 @@ Runner add_stream_command(CLI::App& app) {
   cmd->add_option("--timeout", a->timeout_s, "seconds for the whole stream")->capture_default_str();
   cmd->add_flag("--keep-session", a->keep_session, "do not delete the session at the end");
   // ReSTIR options (restir-* methods; pt accepts them and the session reports them as not applying).
-  auto& r = a->restir;
-  cmd->add_option("--shift", r.shift, "ReSTIR shift mapping: reconnection | hybrid (default: the server's, hybrid)")
-      ->check(CLI::IsMember({"reconnection", "hybrid"}));
-  cmd->add_option("--mis", r.mis, "ReSTIR spatial MIS weights: balance | pairwise (default: the server's, pairwise)")
-      ->check(CLI::IsMember({"balance", "pairwise"}));
-  auto* cap = cmd->add_option("--confidence-cap", r.confidence_cap, "ReSTIR confidence cap of the temporal history (1..1000; default 20)");
-  auto* neighbors = cmd->add_option("--spatial-neighbors", r.spatial_neighbors, "ReSTIR spatial neighbours per pixel (0..8; default 1)");
-  auto* radius = cmd->add_option("--spatial-radius", r.spatial_radius, "ReSTIR spatial radius in pixels (1..256; default 30)");
-  auto* initial = cmd->add_option("--initial-candidates", r.initial_candidates, "ReSTIR candidate paths per pixel (1..64; default 1)");
-  auto* lights = cmd->add_option("--light-candidates", r.light_candidates, "ReSTIR NEE samples per path vertex (1..32; default 1)");
-  cmd->add_flag("--no-temporal", r.no_temporal, "ReSTIR: no temporal reuse");
-  cmd->add_flag("--no-spatial", r.no_spatial, "ReSTIR: no spatial reuse");
-  cmd->add_flag("--biased", r.biased, "ReSTIR: confidence-only temporal weights, as in the DI tutorial (biased)");
-  return [a, frames, cap, neighbors, radius, initial, lights] {
+  add_restir_flags(cmd, a->restir);
+  return [a, frames] {
     a->frames_given = frames->count() > 0;
-    a->restir.confidence_cap_given = cap->count() > 0;
-    a->restir.spatial_neighbors_given = neighbors->count() > 0;
-    a->restir.spatial_radius_given = radius->count() > 0;
-    a->restir.initial_candidates_given = initial->count() > 0;
-    a->restir.light_candidates_given = lights->count() > 0;
     return run_stream(*a);
   };
 }

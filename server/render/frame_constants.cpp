@@ -75,6 +75,7 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   if (scene.history_valid()) {
     c.history_flags = gpu::HISTORY_VALID;
     if (scene.moved_since_previous()) c.history_flags |= gpu::HISTORY_SCENE_MOVED;
+    if (scene.lights_reselected()) c.history_flags |= gpu::HISTORY_LIGHTS_RESELECTED;
   }
   return c;
 }

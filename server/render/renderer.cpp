@@ -51,6 +51,8 @@ void RestirOptions::validate() const {
   auto range = [](auto lo, auto hi) { return "[" + format_limit(lo) + ", " + format_limit(hi) + "]"; };
   require(shift == "reconnection" || shift == "hybrid", "restir.shift = '" + shift + "' is not one of: reconnection, hybrid");
   require(mis == "balance" || mis == "pairwise", "restir.mis = '" + mis + "' is not one of: balance, pairwise");
+  require(suffix == "auto" || suffix == "replay" || suffix == "cached" || suffix == "fail",
+          "restir.suffix = '" + suffix + "' is not one of: auto, replay, cached, fail");
   require(std::isfinite(confidence_cap) && confidence_cap >= RESTIR_MIN_CONFIDENCE_CAP && confidence_cap <= RESTIR_MAX_CONFIDENCE_CAP,
           "restir.confidence_cap = " + std::to_string(confidence_cap) + " is outside " +
               range(RESTIR_MIN_CONFIDENCE_CAP, RESTIR_MAX_CONFIDENCE_CAP));

@@ -31,6 +31,9 @@ struct RestirOptions {
   std::string shift = "hybrid";      // reconnection | hybrid (random replay until a reconnectable vertex)
   std::string mis = "pairwise";      // balance | pairwise (spatial reuse; the temporal pair is the same for both)
   bool unbiased = true;              // false: the DI tutorial's confidence-only temporal weights (biased)
+  // The suffix after x_k when the scene changed between frames (restir/suffix_replay.glsl):
+  // auto | replay (traced again: unbiased) | cached (stored radiance: biased) | fail (refused).
+  std::string suffix = "auto";
   bool temporal = true;              // temporal reuse (gather: backprojection)
   bool spatial = true;               // spatial reuse
   float confidence_cap = 20.0f;      // c_cap of the temporal history

@@ -1,6 +1,7 @@
 #include "render/scene_gpu.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -130,11 +131,33 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
   prev_total_power_ = frames_ > 0 ? total_power_ : table.total_power;
   emitter_count_ = uint32_t(table.emitters.size());
   total_power_ = table.total_power;
+  // Light selection: which emitter triangle each column of the alias table picks, and with which
+  // probability. Where it differs, the same random numbers choose other lights in the two frames.
+  // Probabilities are compared to 1e-5: a turning emitter's float area wobbles in the last bits,
+  // which moves the alias thresholds by as much (a choice changes for a 1e-5 share of the numbers).
+  LightSelection selection;
+  for (const auto& e : table.emitters) {
+    selection.probabilities.push_back(e.p1_pmf.w);
+    for (int k = 0; k < 4; ++k) selection.choices.push_back(e.surface[k]);
+  }
+  for (const auto& a : table.alias) {
+    selection.probabilities.push_back(a.threshold);
+    selection.choices.push_back(a.alias);
+  }
+  lights_reselected_ = frames_ > 0 && !selection.same_as(light_selection_);
+  light_selection_ = std::move(selection);
   ++frames_;
   if (emitter_count_ > emitter_capacity_) throw gpu::GpuError("emitter table overflow");
   emitters_.upload(table.emitters.data(), table.emitters.size() * sizeof(gpu::GpuEmitter));
   alias_.upload(table.alias.data(), table.alias.size() * sizeof(gpu::GpuAliasEntry));
   return origin;
+}
+
+bool GpuScene::LightSelection::same_as(const LightSelection& o) const {
+  if (choices != o.choices || probabilities.size() != o.probabilities.size()) return false;
+  for (size_t i = 0; i < probabilities.size(); ++i)
+    if (std::abs(probabilities[i] - o.probabilities[i]) > 1e-5f * std::max(1.0f, std::abs(o.probabilities[i]))) return false;
+  return true;
 }
 
 void GpuScene::write_slot(VkCommandBuffer cmd, Slot& slot, const scene::FrameState& frame, glm::dvec3 origin,

@@ -86,6 +86,9 @@ class GpuScene {
   // Light-selection totals of the previous frame (those of the last one after the first update).
   uint32_t prev_emitter_count() const { return prev_emitter_count_; }
   double prev_total_emitter_power() const { return prev_total_power_; }
+  // The emitter table of the last recorded frame chooses other lights from the same random numbers
+  // than the frame before's (an emitter's power, LoD level or the set of emitters changed).
+  bool lights_reselected() const { return lights_reselected_; }
   bool has_emitters() const { return has_emitters_; }
   SceneMemory memory() const;
   uint64_t max_triangles_per_frame() const;
@@ -121,6 +124,13 @@ class GpuScene {
   double total_power_ = 0.0;
   uint32_t prev_emitter_count_ = 0;
   double prev_total_power_ = 0.0;
+  struct LightSelection {
+    std::vector<uint32_t> choices;      // per emitter its surface, per alias column its alias
+    std::vector<float> probabilities;   // per emitter its pmf, per alias column its threshold
+    bool same_as(const LightSelection& o) const;
+  };
+  LightSelection light_selection_;  // of the last recorded frame's emitter table
+  bool lights_reselected_ = false;
 };
 
 }  // namespace strata::render

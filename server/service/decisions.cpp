@@ -61,6 +61,17 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const v1::Ren
                      !method.reuse ? no_reuse
                      : temporal || spatial ? "shift mapping between pixels' paths"
                                            : "temporal and spatial reuse are off: no shifts"));
+  out.push_back(make("suffix", asked(req.has_suffix(), suffix_name(req.suffix())), suffix_name(eff.suffix()), temporal,
+                     !method.reuse ? no_reuse
+                     : !temporal   ? no_temporal
+                     : eff.suffix() == v1::SUFFIX_CACHED
+                         ? "a changed scene keeps each path's stored radiance after its reconnection vertex (biased)"
+                     : eff.suffix() == v1::SUFFIX_FAIL
+                         ? "a changed scene refuses temporal shifts of paths with a suffix (temporal.stale)"
+                     : eff.suffix() == v1::SUFFIX_AUTO
+                         ? "replay: a path's suffix is traced again in the other frame whenever an instance changed "
+                           "(whether it met the changed instance is not known without tracing it); kept when nothing changed"
+                         : "a path's suffix is traced again in the other frame whenever an instance changed"));
   out.push_back(make("mis", asked(req.has_mis(), mis_name(req.mis())), mis_name(eff.mis()), spatial,
                      !method.reuse ? no_reuse : spatial ? "MIS weights of spatial resampling" : no_spatial));
   out.push_back(make("unbiased", asked(req.has_unbiased(), on_off(req.unbiased())), on_off(eff.unbiased()), temporal,

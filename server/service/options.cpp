@@ -43,6 +43,7 @@ void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, cons
   check_range(o.has_max_depth(), o.max_depth(), 1, limits.max_depth, p + "max_depth", "max_depth");
   check_enum(o.has_shift(), o.shift(), &v1::Shift_IsValid, p + "shift", "SHIFT_RECONNECTION, SHIFT_HYBRID");
   check_enum(o.has_mis(), o.mis(), &v1::Mis_IsValid, p + "mis", "MIS_BALANCE, MIS_PAIRWISE");
+  check_enum(o.has_suffix(), o.suffix(), &v1::Suffix_IsValid, p + "suffix", "SUFFIX_AUTO, SUFFIX_REPLAY, SUFFIX_CACHED, SUFFIX_FAIL");
   check_enum(o.has_lod_mapping(), o.lod_mapping(), &v1::LodMapping_IsValid, p + "lod_mapping",
                              "LOD_MAPPING_AUTO, LOD_MAPPING_OFF, LOD_MAPPING_UV");
   check_range(o.has_layers(), o.layers(), 0, 8, p + "layers", "0 = auto");
@@ -69,6 +70,7 @@ render::RestirOptions restir_options(const v1::RenderOptions& e) {
   render::RestirOptions r;
   r.shift = shift_name(e.shift());
   r.mis = mis_name(e.mis());
+  r.suffix = suffix_name(e.suffix());
   r.unbiased = e.unbiased();
   r.temporal = e.temporal_reuse();
   r.spatial = e.spatial_reuse();
@@ -84,6 +86,7 @@ render::RestirOptions restir_options(const v1::RenderOptions& e) {
 void normalize(v1::RenderOptions& o) {
   if (o.shift() == v1::SHIFT_UNSPECIFIED) o.set_shift(v1::SHIFT_HYBRID);
   if (o.mis() == v1::MIS_UNSPECIFIED) o.set_mis(v1::MIS_PAIRWISE);
+  if (o.suffix() == v1::SUFFIX_UNSPECIFIED) o.set_suffix(v1::SUFFIX_AUTO);
   if (o.lod_mapping() == v1::LOD_MAPPING_UNSPECIFIED) o.set_lod_mapping(v1::LOD_MAPPING_AUTO);
 }
 
@@ -93,6 +96,7 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const Servic
   o.set_max_depth(std::min<uint32_t>(16, limits.max_depth));
   o.set_shift(v1::SHIFT_HYBRID);
   o.set_mis(v1::MIS_PAIRWISE);
+  o.set_suffix(v1::SUFFIX_AUTO);
   o.set_lod_mapping(v1::LOD_MAPPING_AUTO);
   o.set_layers(0);
   // The ReSTIR defaults are render::RestirOptions'.
@@ -114,6 +118,14 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const Servic
 
 std::string shift_name(v1::Shift s) { return s == v1::SHIFT_RECONNECTION ? "reconnection" : "hybrid"; }
 std::string mis_name(v1::Mis m) { return m == v1::MIS_BALANCE ? "balance" : "pairwise"; }
+std::string suffix_name(v1::Suffix s) {
+  switch (s) {
+    case v1::SUFFIX_REPLAY: return "replay";
+    case v1::SUFFIX_CACHED: return "cached";
+    case v1::SUFFIX_FAIL: return "fail";
+    default: return "auto";
+  }
+}
 std::string lod_mapping_name(v1::LodMapping m) {
   switch (m) {
     case v1::LOD_MAPPING_OFF: return "off";

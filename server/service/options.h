@@ -31,6 +31,7 @@ void normalize(v1::RenderOptions& o);
 render::RestirOptions restir_options(const v1::RenderOptions& effective);
 
 std::string shift_name(v1::Shift s);
+std::string suffix_name(v1::Suffix s);
 std::string mis_name(v1::Mis m);
 std::string lod_mapping_name(v1::LodMapping m);
 

@@ -29,6 +29,7 @@ std::vector<std::string> restir_changes(const render::RestirOptions& a, const re
   };
   field("shift", a.shift, b.shift);
   field("mis", a.mis, b.mis);
+  field("suffix", a.suffix, b.suffix);
   field("unbiased", a.unbiased, b.unbiased);
   field("temporal_reuse", a.temporal, b.temporal);
   field("spatial_reuse", a.spatial, b.spatial);

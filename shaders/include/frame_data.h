@@ -55,6 +55,8 @@ struct GpuFrameConstants {
 // history_flags bits.
 CONST_DEF uint HISTORY_VALID = 1u;         // a previous frame exists (TLAS, instances and camera bound)
 CONST_DEF uint HISTORY_SCENE_MOVED = 2u;   // some instance changed since then (INSTANCE_CHANGED_* says which)
+CONST_DEF uint HISTORY_LIGHTS_RESELECTED = 4u;  // light selection (emitter table or environment share) differs:
+                                                // the same random numbers choose another light in each frame
 
 // Push constants of a dispatch: a frame's samples may be split over several dispatches.
 struct GpuDispatchConstants {
@@ -85,6 +87,10 @@ CONST_DEF uint COUNTER_SPATIAL_FAIL = 24u;          // + reason
 CONST_DEF uint COUNTER_SPLAT_BACKUP_SELECTED = 32u; // restir-splat-backup: pixels whose output is the backup sample
 CONST_DEF uint COUNTER_SPLATS_OFFSCREEN = 33u;      // restir-splat: forward splats that projected outside the image
 CONST_DEF uint COUNTER_SPLATS_OCCLUDED = 34u;       // restir-splat: forward splats whose primary hit is not visible now
+CONST_DEF uint COUNTER_SUFFIX_REPLAYED = 35u;      // temporal shifts that traced their suffix again (restir/suffix_replay.glsl)
+CONST_DEF uint COUNTER_SUFFIX_KEPT = 36u;          // temporal shifts that kept the stored suffix (unchanged scene, or `cached`)
+CONST_DEF uint COUNTER_RAYS_REPLAY = 37u;          // rays of suffix replays, of the pass temporal / splat_project
+CONST_DEF uint COUNTER_RAYS_REPLAY_RESAMPLE = 39u; // rays of suffix replays in splat_resample (reverse splats, backup)
 CONST_DEF uint COUNTER_COUNT = 40u;
 
 STRATA_NAMESPACE_END

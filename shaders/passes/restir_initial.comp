@@ -84,7 +84,8 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
   SurfacePoint xk = surface_none();
   float density_k = 0.0;
   vec3 suffix = vec3(1.0);     // prod f_s |cos| over x_{k+1} .. x_{i-1}
-  vec3 dir_k = vec3(0.0, 0.0, 1.0);
+  float pdf_suffix = 1.0;      // densities of the directions sampled at x_{k+1} .. x_{i-1}
+  vec3 dir_k = vec3(0.0, 0.0, 1.0);  // leaving x_k, in its surface frame
 
   for (uint i = 1u; i < u_restir.max_segments; ++i) {
     uint n = i + 1u;
@@ -107,11 +108,13 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
       PathSample c = y;
       c.segments = n;
       c.flags |= SAMPLE_NEE | (isinf(ls.distance) ? SAMPLE_ESCAPED : 0u);
+      c.light_index = j;
       if (kf != 0u) {
         c.k = kf;
         c.xk = xk;
         c.density = density_k;
-        c.xk_direction = kf == i ? ls.direction : dir_k;
+        c.xk_direction = kf == i ? surface_to_local(v, ls.direction) : dir_k;
+        c.suffix_density = kf == i ? 1.0 : pdf_suffix * ls.pdf;
         c.xk_radiance = kf == i ? ls.radiance : suffix * fs * ls.radiance * m;
         c.light_pdf_end = ls.pdf;
       } else {
@@ -168,7 +171,8 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
         c.k = kf;
         c.xk = xk;
         c.density = density_k;
-        c.xk_direction = kf == i ? d : dir_k;
+        c.xk_direction = kf == i ? surface_to_local(v, d) : dir_k;
+        c.suffix_density = kf == i ? 1.0 : pdf_suffix * pdf;
         c.xk_radiance = kf == i ? le : suffix * fs * le * m;
         c.light_pdf_end = pl;
       } else if (rule_end(v, !hit, edge, camera_distance, hit ? w.cos_in : 1.0)) {
@@ -193,8 +197,11 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
     if (!hit) break;
 
     // Advance to x_{i+1}.
-    if (kf == i) dir_k = d;
-    if (kf != 0u && i > kf) suffix *= fs;
+    if (kf == i) dir_k = surface_to_local(v, d);
+    if (kf != 0u && i > kf) {
+      suffix *= fs;
+      pdf_suffix *= pdf;
+    }
     f_prefix *= fs;
     pdf_path *= pdf;
     if (kf == 0u && rule_intermediate(v, w, edge, camera_distance)) {

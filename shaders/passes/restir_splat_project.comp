@@ -35,6 +35,7 @@ void main() {
   SplatResult s = splat_path(false, x.y, time_partition, moved);
   atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
   atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], s.shift.rays);
+  count_suffix(s.shift, COUNTER_RAYS_REPLAY);
   if (s.shift.reason != SHIFT_OK) {
     atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + s.shift.reason], 1u);
     if (!s.projected && s.shift.reason == SHIFT_FAIL_PRIMARY) atomicAdd(b_counters[COUNTER_SPLATS_OFFSCREEN], 1u);
@@ -42,10 +43,9 @@ void main() {
     return;
   }
   Reservoir y = x;  // W, confidence and p-hat_prev of X_i; the sample becomes Y_i
-  y.y.x1 = s.shift.x1;
+  y.y = shifted_sample(x.y, s.shift);
   y.y.jitter = s.jitter;
   y.y.time = s.time;
-  y.y.density = s.shift.density;
   y.confidence = confidence_capped(x.confidence, u_restir.confidence_cap);  // RS-main 3.4
   SplatRecord rec;
   rec.reservoir = pack_reservoir(y);

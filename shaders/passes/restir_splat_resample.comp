@@ -82,6 +82,7 @@ void count_shift(ShiftResult r) {
   atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
   atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], r.rays);
   if (r.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + r.reason], 1u);
+  count_suffix(r, COUNTER_RAYS_REPLAY_RESAMPLE);
 }
 
 void main() {
@@ -145,9 +146,7 @@ void main() {
       if (run) sj = gather_prepare(false, vec2(pixel), xb.y);
     } else if (job == 3u) {
       run = j_b > 0.0;
-      PathSample y_b = xb.y;  // Y^b: the backup sample as it was shifted into this pixel
-      y_b.x1 = yb.x1;
-      y_b.density = yb.density;
+      PathSample y_b = shifted_sample(xb.y, yb);  // Y^b: the backup sample as it was shifted into this pixel
       if (run) sj = splat_prepare(true, y_b, 0u);
     } else {
       run = backup_domain;
@@ -180,8 +179,7 @@ void main() {
       float m_b = j_b > 0.0 ? mis_balance_terms(c_b * xb.p_hat / j_b, c_star * p_yb, c_r_b * from_r_b) : 0.0;
       if (gris_stream(st, m_b * p_yb * xb.ucw * j_b, p_yb, 0.0, 1u, rng_next_float(rng))) {
         out_r = xb;
-        out_r.y.x1 = yb.x1;
-        out_r.y.density = yb.density;
+        out_r.y = shifted_sample(xb.y, yb);
         f = yb.f;
       }
     } else {

@@ -28,6 +28,7 @@ void count_shift(ShiftResult s) {
   g_rays += s.rays;
   atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
   if (s.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + s.reason], 1u);
+  count_suffix(s, COUNTER_RAYS_REPLAY);
 }
 
 // Backprojection: the previous pixel q that saw this pixel's centre hit (the primary stage's
@@ -150,8 +151,7 @@ void main() {
   vec3 f = f_canonical;
   if (s.selected == 1u) {
     out_r = history;
-    out_r.y.x1 = fw.x1;
-    out_r.y.density = fw.density;
+    out_r.y = shifted_sample(history.y, fw);
     f = fw.f;
     atomicAdd(b_counters[COUNTER_TEMPORAL_SELECTED], 1u);
   }

@@ -19,15 +19,26 @@
 // For the shift to be a bijection the offset path must have the same structure: its first
 // reconnectable vertex must be k again (else the shift fails, Lin 2022 section 6.2).
 //
-// Moving scenes. The kept suffix after x_k is only known through its radiance; when the scene moved
-// between the frames of the two domains, a sample with a non-empty suffix (0 < k < n) cannot be
-// evaluated exactly in the other frame, and the shift fails (SHIFT_FAIL_STALE) in both directions.
+// Moving scenes. The kept suffix after x_k is known through its radiance. When the scene moved
+// between the frames of the two domains, a sample with a non-empty suffix (0 < k < n) is handled
+// as u_restir.suffix_mode says: SUFFIX_REPLAY traces it again in the target frame (exact, both
+// directions: restir/suffix_replay.glsl, where its Jacobian is derived); SUFFIX_CACHED keeps the
+// stored radiance (biased: the suffix's light is that of the other frame); SUFFIX_FAIL fails the
+// shift (SHIFT_FAIL_STALE). The direction leaving x_k is kept in x_k's surface frame in every mode.
 #ifndef STRATA_PATH_SPACE_GLSL
 #define STRATA_PATH_SPACE_GLSL
 
 #include "restir/path_vertex.glsl"
 #include "restir/restir_data.h"
 #include "sampling/rng.h"
+#ifdef STRATA_HISTORY
+#include "restir/suffix_replay.glsl"
+#endif
+
+// What a shift did with the sample's suffix after x_k (counted per pass: COUNTER_SUFFIX_*).
+const uint SUFFIX_NONE = 0u;      // no suffix (k = 0 or k = n), or the shift failed before it
+const uint SUFFIX_KEPT = 1u;      // the stored radiance was used
+const uint SUFFIX_REPLAYED = 2u;  // traced again (its rays are in replay_rays)
 
 struct ShiftResult {
   uint reason;       // SHIFT_OK or SHIFT_FAIL_*
@@ -36,7 +47,13 @@ struct ShiftResult {
   float jacobian;    // |dy/dx| = density(x) / density(y), bounded (shift_jacobian); 0 when the shift failed.
                      // A splat multiplies in its camera and time factors (restir/splat.glsl).
   SurfacePoint x1;   // its primary hit
-  uint rays;
+  uint rays;         // all rays traced, replay_rays included
+  // The offset path's suffix as its sample stores it (restir/reservoir.h): the base's, unless replayed.
+  vec3 xk_radiance;
+  float light_pdf_end;
+  float suffix_density;
+  uint suffix;       // SUFFIX_NONE | SUFFIX_KEPT | SUFFIX_REPLAYED
+  uint replay_rays;
 };
 
 ShiftResult shift_none(uint reason) {
@@ -47,6 +64,11 @@ ShiftResult shift_none(uint reason) {
   r.jacobian = 0.0;
   r.x1 = surface_none();
   r.rays = 0u;
+  r.xk_radiance = vec3(0.0);
+  r.light_pdf_end = 0.0;
+  r.suffix_density = 1.0;
+  r.suffix = SUFFIX_NONE;
+  r.replay_rays = 0u;
   return r;
 }
 
@@ -67,21 +89,36 @@ float shift_jacobian(float base, float offset) {
   return j;
 }
 
-Vertex load_vertex(bool prev, RayHit h, vec3 dir_in) {
-  return make_vertex(load_hit_in(prev, h), h, instance_in(prev, h.instance).lod, dir_in);
+// The sample T(y) that a successful shift of y produced, as a reservoir keeps it.
+PathSample shifted_sample(PathSample y, ShiftResult s) {
+  y.x1 = s.x1;
+  y.density = s.density;
+  y.xk_radiance = s.xk_radiance;
+  y.light_pdf_end = s.light_pdf_end;
+  y.suffix_density = s.suffix_density;
+  return y;
 }
 
 // Evaluates the sample y, shifted into the domain of `pixel` in the current (prev = false) or the
 // previous frame. suffix_changed: the scene moved between y's frame and the domain's frame.
 ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed) {
   ShiftResult r = shift_none(SHIFT_OK);
+  r.xk_radiance = y.xk_radiance;
+  r.light_pdf_end = y.light_pdf_end;
+  r.suffix_density = y.suffix_density;
   uint n = y.segments;
   uint k = y.k;
   bool escaped = (y.flags & SAMPLE_ESCAPED) != 0u;
   bool nee = (y.flags & SAMPLE_NEE) != 0u;
   // Paths of one segment are not resampled (restir_initial.comp): no reservoir holds one.
   if (n < 2u || n > u_restir.max_segments || k > n || k == 1u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
-  if (suffix_changed && k != 0u && k < n) return shift_fail(r, SHIFT_FAIL_STALE);
+  bool has_suffix = k != 0u && k < n;
+  if (suffix_changed && has_suffix && u_restir.suffix_mode == SUFFIX_FAIL) return shift_fail(r, SHIFT_FAIL_STALE);
+#ifdef STRATA_HISTORY
+  bool replay = suffix_changed && has_suffix && u_restir.suffix_mode == SUFFIX_REPLAY;
+#else
+  bool replay = false;  // one frame: nothing to replay
+#endif
   // The pure reconnection shift replays only the camera sample and reconnects at x_2.
   if (u_restir.shift_mode == SHIFT_RECONNECTION && k != 2u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
 
@@ -173,12 +210,19 @@ ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed)
     }
     vec3 fs = scatter(v, d);
     if (!(luminance(fs) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
-    vec3 tail;
+    vec3 tail = vec3(0.0);
+    vec3 dk = vec3(0.0);  // k < n: the direction leaving x_k, kept in its surface frame
+    vec3 fk = vec3(0.0);
     if (k < n) {
-      vec3 fk = scatter(xk, y.xk_direction);
-      float m = 1.0;
-      if (k + 1u == n) m = technique_weight(nee, y.light_pdf_end, scatter_pdf(xk, y.xk_direction));
-      tail = fk * y.xk_radiance * m;
+      dk = surface_to_world(xk, y.xk_direction);
+      fk = scatter(xk, dk);
+      if (!(luminance(fk) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
+      if (!replay) {
+        float m = 1.0;
+        if (k + 1u == n) m = technique_weight(nee, y.light_pdf_end, scatter_pdf(xk, dk));
+        tail = fk * y.xk_radiance * m;
+        r.suffix = SUFFIX_KEPT;
+      }
     } else if (to_environment) {
       if (!nee && !rule_end(v, true, 0.0, camera_distance, 1.0)) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
       tail = u_frame.environment.rgb * technique_weight(nee, light_pdf_environment(prev), scatter_pdf(v, d));
@@ -186,10 +230,27 @@ ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed)
       float pl_k = light_pdf_emitter(prev, xk.material_emission, xk.area, xk.double_sided, dist, xk.cos_in);
       tail = xk.emission * technique_weight(nee, pl_k, scatter_pdf(v, d));
     }
-    if (!(luminance(tail) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
+    if (!replay && !(luminance(tail) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
     r.rays++;
     float t_max = to_environment ? 1e30 : dist * (1.0 - SHADOW_RAY_SHORTEN);
     if (!trace_visible_in(prev, spawn(v), d, t_max)) return shift_fail(r, SHIFT_FAIL_OCCLUDED);
+#ifdef STRATA_HISTORY
+    if (replay) {
+      // The suffix in this frame (restir/suffix_replay.glsl), after the cheaper tests passed.
+      SuffixReplay sr = replay_suffix(prev, xk, dk, y);
+      r.rays += sr.rays;
+      r.replay_rays = sr.rays;
+      r.suffix = SUFFIX_REPLAYED;
+      if (sr.reason != SHIFT_OK) return shift_fail(r, sr.reason);
+      float m = 1.0;
+      if (k + 1u == n) m = technique_weight(nee, sr.light_pdf_end, scatter_pdf(xk, dk));
+      tail = fk * sr.xk_radiance * m;
+      r.xk_radiance = sr.xk_radiance;
+      r.light_pdf_end = sr.light_pdf_end;
+      r.suffix_density = sr.suffix_density;
+      if (!(luminance(tail) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
+    }
+#endif
     r.f = f_prefix * fs * tail;
     r.density = density / (geometry * area);
   } else {
@@ -199,8 +260,22 @@ ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed)
   }
   if (!(luminance(r.f) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
   if (any(isnan(r.f)) || any(isinf(r.f)) || !(r.density > 0.0) || isinf(r.density)) return shift_fail(r, SHIFT_FAIL_JACOBIAN);
-  r.jacobian = shift_jacobian(y.density, r.density);
+  // |dy/dx| (Lin 2022 Eq. 41 over the prefix and reconnection; a replayed suffix multiplies in
+  // suffix_density(x) / suffix_density(y), restir/suffix_replay.glsl; a kept one is unchanged).
+  if (r.suffix == SUFFIX_REPLAYED) r.jacobian = shift_jacobian(y.density * y.suffix_density, r.density * r.suffix_density);
+  else r.jacobian = shift_jacobian(y.density, r.density);
   return r;
 }
+
+#ifdef STRATA_HISTORY
+// Counts a temporal shift's suffix (COUNTER_SUFFIX_*); the rays of a replay also go to
+// `replay_rays_counter` (the pass's slot). Needs the pass's counters (restir/restir_pass.glsl).
+void count_suffix(ShiftResult s, uint replay_rays_counter) {
+  if (s.suffix == SUFFIX_KEPT) atomicAdd(b_counters[COUNTER_SUFFIX_KEPT], 1u);
+  if (s.suffix != SUFFIX_REPLAYED) return;
+  atomicAdd(b_counters[COUNTER_SUFFIX_REPLAYED], 1u);
+  atomicAdd(b_counters[replay_rays_counter], s.replay_rays);
+}
+#endif
 
 #endif

@@ -38,6 +38,7 @@ struct Vertex {
   bool double_sided;
   float area;
   float cos_in;       // |cos| between the geometric normal and the arriving segment
+  vec3 n_surface;     // shading normal as the surface has it (not turned to the arriving side)
   SurfacePoint point;
 };
 
@@ -58,12 +59,18 @@ Vertex make_vertex(SurfaceHit s, RayHit h, uint lod, vec3 dir_in) {
   v.emission = (front || v.double_sided) ? m.emission_roughness.rgb : vec3(0.0);
   v.area = s.area;
   v.cos_in = abs(cos_hit);
+  v.n_surface = s.shading_normal;
   v.point.instance = h.instance;
   v.point.geometry = h.geometry;
   v.point.triangle = h.triangle;
   v.point.bary = h.bary;
   v.point.lod = lod;
   return v;
+}
+
+// The vertex a ray found in the current (prev = false) or the previous frame.
+Vertex load_vertex(bool prev, RayHit h, vec3 dir_in) {
+  return make_vertex(load_hit_in(prev, h), h, instance_in(prev, h.instance).lod, dir_in);
 }
 
 // f(wo, d) |cos| at v; zero when d leaves below the geometric surface (reflection only).
@@ -75,6 +82,24 @@ vec3 scatter(Vertex v, vec3 d) {
 float scatter_pdf(Vertex v, vec3 d) {
   if (dot(d, v.ng) <= 0.0) return 0.0;
   return bsdf_pdf(v.bsdf, v.wo, to_local(d, v.t, v.b, v.ns));
+}
+
+// The surface frame of a vertex: an orthonormal basis around its shading normal that does not
+// depend on the side a path arrives from, and turns with the object (the normal does). A direction
+// kept in it (a reconnection vertex's outgoing direction, restir/reservoir.h) maps between frames
+// by a rotation, whose solid-angle Jacobian is 1.
+vec3 surface_to_local(Vertex v, vec3 d) {
+  vec3 t;
+  vec3 b;
+  make_onb(v.n_surface, t, b);
+  return vec3(dot(d, t), dot(d, b), dot(d, v.n_surface));
+}
+
+vec3 surface_to_world(Vertex v, vec3 l) {
+  vec3 t;
+  vec3 b;
+  make_onb(v.n_surface, t, b);
+  return normalize(l.x * t + l.y * b + l.z * v.n_surface);
 }
 
 vec3 spawn(Vertex v) { return offset_ray_origin(v.position, v.ng); }

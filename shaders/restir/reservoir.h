@@ -3,8 +3,9 @@
 // A path sample is an area reservoir's sample (Zhang et al. 2024; RS-main 3.5): the primary hit
 // x1 is stored as the surface point itself (instance, primitive, triangle, barycentrics and LoD
 // level: object space, so it moves with its object and can be splatted exactly, RS-main 4.1.1),
-// as is the reconnection vertex x_k, with the direction leaving x_k and the radiance arriving
-// along it so that the BSDF at x_k can be re-evaluated for a new predecessor (reconnection shift).
+// as is the reconnection vertex x_k, with the direction leaving x_k (in x_k's surface frame, so that
+// it turns with its object) and the radiance arriving along it so that the BSDF at x_k can be
+// re-evaluated for a new predecessor (reconnection shift).
 // Positions are never stored in fp16: barycentrics are f32; radiance is f32 because emitters may
 // exceed fp16's 65504 (the `stiff` scene has 1e6); the confidence weight is 16-bit; the shutter time
 // is f32, as it is replayed exactly.
@@ -16,7 +17,9 @@
 // (cos theta_k / |x_k - x_{k-1}|^2) * area(x_k's triangle) when the path reconnects, so that every
 // shift's Jacobian is density(base) / density(offset). `light_pdf_end` is the NEE density of the
 // last vertex as seen from x_{n-1}, which the MIS weight of the path's technique needs when
-// x_{n-1} = x_k is re-entered from a new direction.
+// x_{n-1} = x_k is re-entered from a new direction. `suffix_density` and `light_index` serve the
+// suffix replay (restir/suffix_replay.glsl): the density of the suffix's sampled decisions after
+// x_k, and which light candidate of x_{n-1} chose an NEE end.
 #ifndef STRATA_RESTIR_RESERVOIR_H
 #define STRATA_RESTIR_RESERVOIR_H
 #include "include/lang.h"
@@ -47,7 +50,9 @@ struct SurfacePoint {
 struct PathSample {
   SurfacePoint x1;        // primary hit
   SurfacePoint xk;        // reconnection vertex
-  vec3 xk_direction;      // unit direction leaving x_k towards x_{k+1} (the escape direction if escaped)
+  vec3 xk_direction;      // k < n: unit direction leaving x_k towards x_{k+1}, in x_k's surface frame
+                          // (surface_to_local, path_vertex.glsl); k = n: the world direction from
+                          // x_{k-1} (the escape direction if escaped)
   vec3 xk_radiance;       // radiance arriving at x_k along -xk_direction (emission of x_k excluded)
   uint k;                 // index of x_k (x0 is the camera); 0 = not reconnectable
   uint segments;          // number of path segments (path length)
@@ -58,6 +63,9 @@ struct PathSample {
   vec2 jitter;            // subpixel position in [0,1)^2 (box filter), f32
   float density;          // replay density (see above)
   float light_pdf_end;    // NEE solid-angle density of the last vertex from x_{n-1} (0: not NEE-able)
+  float suffix_density;   // product of the densities of the directions sampled at x_{k+1} .. x_{n-1}
+                          // (BSDF, or the light sample of an NEE end); 1 when nothing after x_k is sampled
+  uint light_index;       // NEE end: the light candidate of x_{n-1} that chose x_n (its random numbers)
 };
 
 struct Reservoir {
@@ -72,8 +80,8 @@ struct PackedReservoir {
   uvec4 x1;          // instance|geometry, triangle, bary.x, bary.y
   uvec4 xk;          // instance|geometry, triangle, bary.x, bary.y
   uvec4 radiance;    // xk_radiance rgb (f32), packed xk_direction (octahedral snorm16x2)
-  uvec4 weights;     // ucw (f32), p_hat (f32), seed, half2(confidence, 0)
-  uvec4 meta;        // k | length << 8 | flags << 16 | lod1 << 24 | lodk << 28, lens (unorm16x2), time (f32), 0
+  uvec4 weights;     // ucw (f32), p_hat (f32), seed, half(confidence) | light_index << 16
+  uvec4 meta;        // k | length << 8 | flags << 16 | lod1 << 24 | lodk << 28, lens (unorm16x2), time (f32), suffix_density (f32)
   uvec4 shift;       // jitter.x, jitter.y, density, light_pdf_end (f32)
 };
 
@@ -131,10 +139,11 @@ INLINE PackedReservoir pack_reservoir(Reservoir r) {
   p.xk = pack_surface(r.y.xk);
   p.radiance = uvec4(floatBitsToUint(r.y.xk_radiance.x), floatBitsToUint(r.y.xk_radiance.y),
                      floatBitsToUint(r.y.xk_radiance.z), packSnorm2x16(octahedral_encode(r.y.xk_direction)));
-  p.weights = uvec4(floatBitsToUint(r.ucw), floatBitsToUint(r.p_hat), r.y.seed, packHalf2x16(vec2(r.confidence, 0.0f)));
+  p.weights = uvec4(floatBitsToUint(r.ucw), floatBitsToUint(r.p_hat), r.y.seed,
+                    (packHalf2x16(vec2(r.confidence, 0.0f)) & 0xFFFFu) | ((r.y.light_index & 0xFFFFu) << 16u));
   uint meta = (r.y.k & 0xFFu) | ((r.y.segments & 0xFFu) << 8u) | ((r.y.flags & 0xFFu) << 16u) | ((r.y.x1.lod & 0xFu) << 24u) |
               ((r.y.xk.lod & 0xFu) << 28u);
-  p.meta = uvec4(meta, packUnorm2x16(r.y.lens), floatBitsToUint(r.y.time), 0u);
+  p.meta = uvec4(meta, packUnorm2x16(r.y.lens), floatBitsToUint(r.y.time), floatBitsToUint(r.y.suffix_density));
   p.shift = uvec4(floatBitsToUint(r.y.jitter.x), floatBitsToUint(r.y.jitter.y), floatBitsToUint(r.y.density),
                   floatBitsToUint(r.y.light_pdf_end));
   return p;
@@ -150,7 +159,8 @@ INLINE Reservoir unpack_reservoir(PackedReservoir p) {
   r.ucw = uintBitsToFloat(p.weights.x);
   r.p_hat = uintBitsToFloat(p.weights.y);
   r.y.seed = p.weights.z;
-  r.confidence = unpackHalf2x16(p.weights.w).x;
+  r.confidence = unpackHalf2x16(p.weights.w & 0xFFFFu).x;
+  r.y.light_index = p.weights.w >> 16u;
   r.y.time = uintBitsToFloat(p.meta.z);
   r.y.k = meta & 0xFFu;
   r.y.segments = (meta >> 8u) & 0xFFu;
@@ -159,6 +169,7 @@ INLINE Reservoir unpack_reservoir(PackedReservoir p) {
   r.y.jitter = vec2(uintBitsToFloat(p.shift.x), uintBitsToFloat(p.shift.y));
   r.y.density = uintBitsToFloat(p.shift.z);
   r.y.light_pdf_end = uintBitsToFloat(p.shift.w);
+  r.y.suffix_density = uintBitsToFloat(p.meta.w);
   return r;
 }
 

@@ -8,6 +8,12 @@ STRATA_NAMESPACE_BEGIN
 CONST_DEF uint SHIFT_RECONNECTION = 0u;  // reconnect at x_2 only (the base path must allow it)
 CONST_DEF uint SHIFT_HYBRID = 1u;        // random replay until the first reconnectable vertex
 
+// What a temporal shift does with the part of a path after its reconnection vertex x_k when the
+// scene changed between the two frames (restir/suffix_replay.glsl). `auto` is decided on the host.
+CONST_DEF uint SUFFIX_FAIL = 0u;    // the shift fails (SHIFT_FAIL_STALE)
+CONST_DEF uint SUFFIX_CACHED = 1u;  // the stored radiance is kept (the references' behaviour; biased)
+CONST_DEF uint SUFFIX_REPLAY = 2u;  // the suffix is traced again in the target frame (unbiased)
+
 CONST_DEF uint MIS_BALANCE = 0u;   // generalized balance heuristic (RS-main Eq. 6), O(N^2) shifts
 CONST_DEF uint MIS_PAIRWISE = 1u;  // confidence-weighted pairwise MIS, O(N) shifts
 
@@ -27,7 +33,7 @@ struct GpuRestirConstants {
   uint flags;               // RESTIR_*
   uint max_segments;        // path length limit (1 bounce for ReSTIR DI: 2 segments)
   uint splats_per_frame;    // K of multi-splatting over an open shutter (RS-main Eq. 19)
-  uint pad1;
+  uint suffix_mode;         // SUFFIX_*
   uint pad2;
 };
 

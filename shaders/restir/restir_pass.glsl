@@ -45,6 +45,8 @@ Reservoir reservoir_empty() {
   r.y.jitter = vec2(0.5);
   r.y.density = 0.0;
   r.y.light_pdf_end = 0.0;
+  r.y.suffix_density = 1.0;
+  r.y.light_index = 0u;
   r.ucw = 0.0;
   r.confidence = 0.0;
   r.p_hat = 0.0;

@@ -35,7 +35,8 @@ float emitter_pdf_solid_angle(float select_pmf, float area, float distance, floa
 
 float environment_pdf(GpuFrameConstants f) { return f.env_select_prob * (1.0 / (4.0 * PI)); }
 
-bool sample_light(vec3 x, vec3 u, GpuFrameConstants f, out LightSample ls) {
+LightSample light_sample_none() {
+  LightSample ls;
   ls.direction = vec3(0.0, 0.0, 1.0);
   ls.distance = 0.0;
   ls.radiance = vec3(0.0);
@@ -46,21 +47,44 @@ bool sample_light(vec3 x, vec3 u, GpuFrameConstants f, out LightSample ls) {
   ls.bary = vec2(0.0);
   ls.area = 0.0;
   ls.cos_light = 1.0;
-  if (u.z < f.env_select_prob || f.emitter_count == 0u) {
-    if (!(f.env_select_prob > 0.0)) return false;
-    ls.direction = sample_uniform_sphere(u.xy);
-    ls.distance = 1.0 / 0.0;
-    ls.radiance = f.environment.rgb;
-    ls.pdf = environment_pdf(f);
-    return true;
-  }
-  // Reuse u.z, rescaled, to pick the alias-table column and its coin.
+  return ls;
+}
+
+const uint LIGHT_ENVIRONMENT = 0xFFFFFFFFu;
+
+// The light that random numbers u choose: LIGHT_ENVIRONMENT, or an emitter of the alias table
+// (u.z, rescaled, picks the column and its coin; u.xy is left for the point on it). False when
+// there is nothing to choose.
+bool choose_light(vec3 u, GpuFrameConstants f, out uint index) {
+  index = LIGHT_ENVIRONMENT;
+  if (u.z < f.env_select_prob || f.emitter_count == 0u) return f.env_select_prob > 0.0;
   float v = (u.z - f.env_select_prob) / (1.0 - f.env_select_prob);
   float scaled = v * float(f.emitter_count);
   uint column = min(uint(scaled), f.emitter_count - 1u);
   float coin = scaled - float(column);
   GpuAliasEntry entry = b_alias[column];
-  uint index = coin < entry.threshold ? column : entry.alias;
+  index = coin < entry.threshold ? column : entry.alias;
+  return true;
+}
+
+// The environment as light sample u chose it.
+LightSample environment_light_sample(vec3 u, GpuFrameConstants f) {
+  LightSample ls = light_sample_none();
+  ls.direction = sample_uniform_sphere(u.xy);
+  ls.distance = 1.0 / 0.0;
+  ls.radiance = f.environment.rgb;
+  ls.pdf = environment_pdf(f);
+  return ls;
+}
+
+bool sample_light(vec3 x, vec3 u, GpuFrameConstants f, out LightSample ls) {
+  ls = light_sample_none();
+  uint index;
+  if (!choose_light(u, f, index)) return false;
+  if (index == LIGHT_ENVIRONMENT) {
+    ls = environment_light_sample(u, f);
+    return true;
+  }
   GpuEmitter e = b_emitters[index];
 
   vec2 b = sample_triangle_barycentrics(u.xy);

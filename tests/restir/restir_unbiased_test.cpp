@@ -8,6 +8,10 @@
 // It fails when the math is broken: see docs/BENCHMARKS.md "Checked by breaking the code".
 #include <cstdio>
 #include <functional>
+#include <stdexcept>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "gpu/gpu_context.h"
 #include "render/renderer.h"
@@ -28,13 +32,22 @@ struct Case {
   uint32_t frames = 4;
   uint32_t runs = 96;
   std::function<void(render::RestirOptions&)> options = [](render::RestirOptions&) {};
+  // The frames a sequence's value averages (default 1 .. F-1: all that reuse history).
+  std::function<bool(uint32_t)> scored = [](uint32_t f) { return f >= 1; };
   // Frame state of frame f (default: the scene's animation).
   std::function<scene::FrameState(const scene::Scene&, uint32_t)> state = [](const scene::Scene& s, uint32_t f) {
     return s.frame_state(f);
   };
+  bool expect_bias = false;  // a biased variant the test must detect (the cases' power)
 };
 
-// Mean over frames 1..F-1 of one sequence.
+uint32_t scored_frames(const Case& c) {
+  uint32_t n = 0;
+  for (uint32_t f = 0; f < c.frames; ++f) n += c.scored(f);
+  return n;
+}
+
+// Mean over the scored frames of one sequence.
 image::Image sequence_mean(const scene::Scene& s, const Case& c, uint32_t seed) {
   render::RenderSettings rs;
   rs.width = k_size;
@@ -48,12 +61,12 @@ image::Image sequence_mean(const scene::Scene& s, const Case& c, uint32_t seed) 
   for (uint32_t f = 0; f < c.frames; ++f) {
     auto r = renderer.render(c.state(s, f), f);
     for (float v : r.image.rgba) EXPECT_TRUE(std::isfinite(v)) << c.name << " frame " << f;
-    if (f == 0) continue;
+    if (!c.scored(f)) continue;
     if (mean.rgba.empty()) mean = r.image;
     else
       for (size_t i = 0; i < mean.rgba.size(); ++i) mean.rgba[i] += r.image.rgba[i];
   }
-  for (float& v : mean.rgba) v /= float(c.frames - 1);
+  for (float& v : mean.rgba) v /= float(scored_frames(c));
   return mean;
 }
 
@@ -68,13 +81,14 @@ RunningImage reference_of(const scene::Scene& s, const Case& c, uint32_t runs, u
     rs.seed = 90000 + r;
     image::Image mean;
     for (uint32_t f = 1; f < c.frames; ++f) {
+      if (!c.scored(f)) continue;
       render::Renderer renderer(gpu_context(), s, rs);
       auto img = renderer.render(c.state(s, f), f).image;
       if (mean.rgba.empty()) mean = img;
       else
         for (size_t i = 0; i < mean.rgba.size(); ++i) mean.rgba[i] += img.rgba[i];
     }
-    for (float& v : mean.rgba) v /= float(c.frames - 1);
+    for (float& v : mean.rgba) v /= float(scored_frames(c));
     out.add(mean);
   }
   return out;
@@ -90,7 +104,8 @@ TEST_P(RestirUnbiased, MatchesPathTracedReference) {
   for (uint32_t r = 0; r < c.runs; ++r) method.add(sequence_mean(s, c, 1000 + r));
   BiasReport report = compare_to_reference(method, reference, 4);
   std::printf("%s: %s\n", c.name.c_str(), report.describe().c_str());
-  EXPECT_TRUE(report.passed) << c.name << ": " << report.describe();
+  if (c.expect_bias) EXPECT_FALSE(report.passed) << c.name << " should be detected as biased: " << report.describe();
+  else EXPECT_TRUE(report.passed) << c.name << ": " << report.describe();
 }
 
 // A camera that moves sideways and forward each frame (cornell's default camera).
@@ -133,6 +148,40 @@ scene::FrameState blur_camera(const scene::Scene& s, uint32_t f) {
   scene::FrameState st = s.frame_state(0);
   st.camera = blur_camera_at(s, float(f));
   st.camera_open = scene::shutter_open_camera(blur_camera_at(s, float(f) - 1.0f), st.camera);
+  return st;
+}
+
+// Suffix replay (restir/suffix_replay.glsl): cornell with one instance jumping between two places
+// every frame, so that what a path's suffix after its reconnection vertex sees differs between
+// any two frames: a stored suffix radiance is always the other configuration's (cached is biased).
+uint32_t instance_named(const scene::Scene& s, const std::string& name) {
+  for (uint32_t i = 0; i < s.instances.size(); ++i)
+    if (s.instances[i].name == name) return i;
+  throw std::runtime_error("no instance " + name);
+}
+
+scene::FrameState jumping(const scene::Scene& s, uint32_t f, const std::string& name, glm::vec3 offset) {
+  scene::FrameState st = s.frame_state(0);
+  const uint32_t i = instance_named(s, name);
+  if (f % 2 == 1) st.transforms[i] = glm::translate(glm::mat4(1.0f), offset) * st.transforms[i];
+  return st;
+}
+
+// The tall box jumps up under the ceiling light (its top 30 cm below it) and back: every other
+// frame it shadows most of the room, so the light arriving at reconnection vertices changes everywhere.
+scene::FrameState moving_occluder(const scene::Scene& s, uint32_t f) { return jumping(s, f, "tall_box", {0.35f, 0.5f, 0.35f}); }
+
+// The ceiling light moves 0.8 m towards the red wall and back: every NEE end moves with it.
+scene::FrameState moving_emitter(const scene::Scene& s, uint32_t f) { return jumping(s, f, "light", {-0.7f, 0.0f, 0.4f}); }
+
+// A camera close to the back-left corner that sees neither box; the tall box moves in front of the
+// red wall it sees, so the box changes these pixels only through paths that bounce off a seen surface.
+scene::FrameState suffix_only_motion(const scene::Scene& s, uint32_t f) {
+  scene::FrameState st = jumping(s, f, "tall_box", {-0.35f, 0.0f, 0.8f});
+  const glm::vec3 eye(0.2f, 1.55f, -0.1f), target(-1.0f, 1.3f, -1.0f);
+  st.camera.position = eye;
+  st.camera.orientation = glm::normalize(glm::quatLookAtRH(glm::normalize(target - eye), glm::vec3(0.0f, 1.0f, 0.0f)));
+  st.camera.yfov = 0.5f;
   return st;
 }
 
@@ -187,6 +236,29 @@ std::vector<Case> cases() {
                  o.splats_per_frame = 2;
                },
                .state = blur_camera});
+  // Suffix replay under scene changes, for gather and splat (temporal reuse only: the shifts under test).
+  for (const auto& [name, state] : std::vector<std::pair<std::string, decltype(Case::state)>>{
+           {"moving_occluder", moving_occluder}, {"moving_emitter", moving_emitter}, {"suffix_only_motion", suffix_only_motion}}) {
+    // Scored where the instance is away (odd frames): the bias of a stored suffix (the other
+    // configuration's light) then has one sign in every scored frame instead of cancelling.
+    v.push_back({.name = "replay_" + name, .scene = "cornell", .frames = 6, .options = [](render::RestirOptions& o) {
+                   o.spatial = false;
+                   o.suffix = "replay";
+                 }, .scored = [](uint32_t f) { return f % 2 == 1; }, .state = state});
+  }
+  // The cases are strong enough to see the stored suffix's bias (the references' `cached`).
+  v.push_back({.name = "cached_moving_emitter_is_biased", .scene = "cornell", .frames = 6,
+               .options = [](render::RestirOptions& o) {
+                 o.spatial = false;
+                 o.suffix = "cached";
+               },
+               .scored = [](uint32_t f) { return f % 2 == 1; }, .state = moving_emitter, .expect_bias = true});
+  v.push_back({.name = "splat_replay_moving_occluder", .scene = "cornell", .method = "restir-splat", .frames = 6,
+               .options = [](render::RestirOptions& o) {
+                 o.spatial = false;
+                 o.suffix = "replay";
+               },
+               .scored = [](uint32_t f) { return f % 2 == 1; }, .state = moving_occluder});
   return v;
 }
 

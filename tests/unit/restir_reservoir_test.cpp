@@ -26,6 +26,8 @@ Reservoir sample_reservoir(Rng& rng) {
   r.y.jitter = vec2(0.123456789f, 0.987654321f);
   r.y.density = 3.5e-7f;
   r.y.light_pdf_end = 1234.5f;
+  r.y.suffix_density = 0.0421f;
+  r.y.light_index = 31u;
   r.ucw = 3.25e-5f;
   r.confidence = 20.0f;
   r.p_hat = 1.5e7f;
@@ -61,6 +63,8 @@ TEST(RestirReservoir, PackedRoundTrip) {
     EXPECT_EQ(u.y.jitter.y, r.y.jitter.y);
     EXPECT_EQ(u.y.density, r.y.density);
     EXPECT_EQ(u.y.light_pdf_end, r.y.light_pdf_end);
+    EXPECT_EQ(u.y.suffix_density, r.y.suffix_density);
+    EXPECT_EQ(u.y.light_index, r.y.light_index);
     EXPECT_EQ(u.ucw, r.ucw);
     EXPECT_EQ(u.p_hat, r.p_hat);
     EXPECT_FLOAT_EQ(u.confidence, 20.0f);

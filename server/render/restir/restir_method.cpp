@@ -92,6 +92,10 @@ void RestirMethod::collect(std::span<const uint32_t> c, FrameStats& s) const {
   s.reuse["temporal.no_history"] = c[COUNTER_TEMPORAL_NO_HISTORY];
   s.reuse["temporal.selected"] = c[COUNTER_TEMPORAL_SELECTED];
   s.reuse["temporal.validation_refused"] = c[COUNTER_TEMPORAL_INVALID];
+  // Suffixes after x_k (restir/suffix_replay.glsl): traced again in the other frame, or kept.
+  s.reuse["temporal.suffix_replayed"] = c[COUNTER_SUFFIX_REPLAYED];
+  s.reuse["temporal.suffix_kept"] = c[COUNTER_SUFFIX_KEPT];
+  s.reuse["temporal.replay_rays"] = uint64_t(c[COUNTER_RAYS_REPLAY]) + c[COUNTER_RAYS_REPLAY_RESAMPLE];
   for (const auto& stage : stages_) stage->collect(c, s);
   s.reuse["scene.instances_changed"] = state_.shared.scene.changed_instances();  // since the previous frame
   s.reuse["spatial.shifts"] = c[COUNTER_SPATIAL_SHIFTS];

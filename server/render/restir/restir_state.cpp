@@ -22,12 +22,23 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
   c.spatial_neighbors = o.spatial_neighbors;
   c.flags = (o.unbiased ? gpu::RESTIR_UNBIASED : 0u) | (spec.backup ? gpu::RESTIR_SPLAT_BACKUP : 0u);
   c.splats_per_frame = o.splats_per_frame;
+  // auto replays: whether a path's suffix met a changed instance is not known without tracing it.
+  c.suffix_mode = o.suffix == "fail" ? gpu::SUFFIX_FAIL : o.suffix == "cached" ? gpu::SUFFIX_CACHED : gpu::SUFFIX_REPLAY;
   // ReSTIR DI: camera, x1, light (one bounce).
   c.max_segments = spec.direct_lighting || o.direct_lighting ? std::min<uint32_t>(2, s.max_depth) : s.max_depth;
   return c;
 }
 
 }  // namespace
+
+std::string suffix_decision(const std::string& suffix_option, bool scene_moved) {
+  if (!scene_moved) return "suffixes kept (nothing moved)";
+  if (suffix_option == "fail") return "suffixes refused (suffix fail: the scene changed)";
+  if (suffix_option == "cached") return "suffixes cached (suffix cached: stored radiance, biased)";
+  if (suffix_option == "replay") return "suffixes replayed (the scene changed)";
+  return "suffixes replayed (suffix auto: the scene changed, and whether a path met a changed instance is not known "
+         "without tracing it)";
+}
 
 RestirState::RestirState(const SharedResources& shared_resources, const RenderSettings& render_settings, const MethodSpec& method)
     : shared(shared_resources),

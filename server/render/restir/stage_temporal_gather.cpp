@@ -12,7 +12,7 @@ class TemporalGatherStage : public Stage {
  public:
   explicit TemporalGatherStage(const RestirState& state)
       : state_(state),
-        pass_(state.shared.ctx, &state.shared.scene, {.lights = false, .history = true}, "restir_temporal",
+        pass_(state.shared.ctx, &state.shared.scene, {.lights = true, .history = true}, "restir_temporal",
               restir_resources(state, storage(BINDING_RESERVOIRS_OUT, Access::read_write, state.work),
                                {history_previous(BINDING_RESERVOIRS_IN, state.history),
                                 history_current(BINDING_PRIMARY, Access::read, state.visibility),
@@ -21,6 +21,7 @@ class TemporalGatherStage : public Stage {
   uint32_t timed_passes() const override { return 1; }
   void record(const StageFrame& f) override {
     ran_ = f.frame.history_valid;
+    moved_ = f.frame.scene_moved;
     if (!ran_) return;
     timed(f, "temporal", [&] { pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height); });
   }
@@ -28,13 +29,15 @@ class TemporalGatherStage : public Stage {
     const RestirOptions& o = state_.settings.restir;
     if (!ran_) return {"temporal", false, "no previous frame yet"};
     return {"temporal", true,
-            "gather, " + o.shift + " shift, " + (o.unbiased ? "reverse-shift MIS" : "confidence weights (biased)")};
+            "gather, " + o.shift + " shift, " + (o.unbiased ? "reverse-shift MIS" : "confidence weights (biased)") + "; " +
+                suffix_decision(o.suffix, moved_)};
   }
 
  private:
   const RestirState& state_;
   Pass pass_;
   bool ran_ = false;
+  bool moved_ = false;
 };
 
 }  // namespace

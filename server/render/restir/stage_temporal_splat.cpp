@@ -27,7 +27,7 @@ class TemporalSplatStage : public Stage {
     allocate_records(1);
     const auto& ctx = state.shared.ctx;
     const GpuScene* scene = &state.shared.scene;
-    const SceneUse with_history{.lights = false, .history = true};
+    const SceneUse with_history{.lights = true, .history = true};  // lights: the suffix replay's NEE end
     auto out = [&] { return storage(BINDING_RESERVOIRS_OUT, Access::read_write, state.work); };
     auto in = [&] { return history_previous(BINDING_RESERVOIRS_IN, state.history); };
     project_ = std::make_unique<Pass>(ctx, scene, with_history, "restir_splat_project",
@@ -58,6 +58,7 @@ class TemporalSplatStage : public Stage {
 
   void record(const StageFrame& f) override {
     ran_ = f.frame.history_valid;
+    moved_ = f.frame.scene_moved;
     if (!ran_) return;
     // K of this frame (RS-main Eq. 19), as the passes read it from the frame constants.
     partitions_ = time_partitions(f.frame.frame, state_.settings.restir.splats_per_frame);
@@ -81,7 +82,8 @@ class TemporalSplatStage : public Stage {
     return {"temporal", true,
             std::string(state_.spec.backup ? "splat with backup sample" : "splat") + " (counting sort; reprojection + " +
                 state_.settings.restir.shift + " shift, reverse-splat MIS, bilinear confidence" +
-                (partitions_ > 1 ? "; " + std::to_string(partitions_) + " time partitions over the shutter)" : ")")};
+                (partitions_ > 1 ? "; " + std::to_string(partitions_) + " time partitions over the shutter)" : ")") + "; " +
+                suffix_decision(state_.settings.restir.suffix, moved_)};
   }
 
   std::map<std::string, uint64_t> memory_bytes() const override {
@@ -100,6 +102,9 @@ class TemporalSplatStage : public Stage {
     s.reuse["splat.offscreen"] = c[COUNTER_SPLATS_OFFSCREEN];
     s.reuse["splat.occluded"] = c[COUNTER_SPLATS_OCCLUDED];
     if (state_.spec.backup) s.reuse["splat.backup_selected"] = c[COUNTER_SPLAT_BACKUP_SELECTED];
+    // Suffix replay rays per pass (of temporal.replay_rays): forward splats, and reverse splats with the backup.
+    s.reuse["splat_project.replay_rays"] = c[COUNTER_RAYS_REPLAY];
+    s.reuse["splat_resample.replay_rays"] = c[COUNTER_RAYS_REPLAY_RESAMPLE];
   }
 
  private:
@@ -121,6 +126,7 @@ class TemporalSplatStage : public Stage {
   uint32_t allocated_partitions_ = 0;
   uint32_t partitions_ = 1;
   bool ran_ = false;
+  bool moved_ = false;
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 // The stages a ReSTIR method composes (method_table.h, docs/ARCHITECTURE.md). Each one is
 // declared in its own file with the passes it records and the state it reads and writes.
 #include <memory>
+#include <string>
 
 #include "render/restir/stage.h"
 
@@ -21,5 +22,8 @@ std::unique_ptr<Stage> make_temporal_splat_stage(const RestirState& state);
 std::unique_ptr<Stage> make_spatial_stage(const RestirState& state);
 // shade: f(Y) W and the directly seen emission into the image (restir_shade); history.current -> accum.
 std::unique_ptr<Stage> make_shade_stage(const RestirState& state);
+
+// What a temporal stage did with path suffixes this frame (restir/suffix_replay.glsl), for its decision.
+std::string suffix_decision(const std::string& suffix_option, bool scene_moved);
 
 }  // namespace strata::render

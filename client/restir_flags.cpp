@@ -1,0 +1,70 @@
+#include "restir_flags.h"
+
+#include <stdexcept>
+
+namespace strata::client {
+
+void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
+  cmd->add_option("--shift", r.shift, "ReSTIR shift mapping: reconnection | hybrid (default: the server's, hybrid)")
+      ->check(CLI::IsMember({"reconnection", "hybrid"}));
+  cmd->add_option("--mis", r.mis, "ReSTIR spatial MIS weights: balance | pairwise (default: the server's, pairwise)")
+      ->check(CLI::IsMember({"balance", "pairwise"}));
+  cmd->add_option("--suffix", r.suffix,
+                  "ReSTIR path suffixes when the scene changed: auto | replay | cached (biased) | fail (default: the server's, auto)")
+      ->check(CLI::IsMember({"auto", "replay", "cached", "fail"}));
+  cmd->add_option("--confidence-cap", r.confidence_cap, "ReSTIR confidence cap of the temporal history (1..1000; default 20)");
+  cmd->add_option("--spatial-neighbors", r.spatial_neighbors, "ReSTIR spatial neighbours per pixel (0..8; default 1)");
+  cmd->add_option("--spatial-radius", r.spatial_radius, "ReSTIR spatial radius in pixels (1..256; default 30)");
+  cmd->add_option("--initial-candidates", r.initial_candidates, "ReSTIR candidate paths per pixel (1..64; default 1)");
+  cmd->add_option("--light-candidates", r.light_candidates, "ReSTIR NEE samples per path vertex (1..32; default 1)");
+  cmd->add_flag("--no-temporal", r.no_temporal, "ReSTIR: no temporal reuse");
+  cmd->add_flag("--no-spatial", r.no_spatial, "ReSTIR: no spatial reuse");
+  cmd->add_flag("--biased", r.biased, "ReSTIR: confidence-only temporal weights, as in the DI tutorial (biased)");
+}
+
+std::string restir_flags_text(const RestirFlags& r) {
+  std::string s;
+  auto add = [&](const std::string& flag, const std::string& value) { s += (s.empty() ? "" : " ") + flag + (value.empty() ? "" : " " + value); };
+  auto num = [](double v) {
+    std::string t = std::to_string(v);
+    t.erase(t.find_last_not_of('0') + 1);
+    if (!t.empty() && t.back() == '.') t.pop_back();
+    return t;
+  };
+  if (!r.shift.empty()) add("--shift", r.shift);
+  if (!r.mis.empty()) add("--mis", r.mis);
+  if (!r.suffix.empty()) add("--suffix", r.suffix);
+  if (r.confidence_cap) add("--confidence-cap", num(*r.confidence_cap));
+  if (r.spatial_neighbors) add("--spatial-neighbors", std::to_string(*r.spatial_neighbors));
+  if (r.spatial_radius) add("--spatial-radius", num(*r.spatial_radius));
+  if (r.initial_candidates) add("--initial-candidates", std::to_string(*r.initial_candidates));
+  if (r.light_candidates) add("--light-candidates", std::to_string(*r.light_candidates));
+  if (r.no_temporal) add("--no-temporal", "");
+  if (r.no_spatial) add("--no-spatial", "");
+  if (r.biased) add("--biased", "");
+  return s;
+}
+
+void set_restir_options(const RestirFlags& r, v1::RenderOptions& o) {
+  if (r.shift == "reconnection") o.set_shift(v1::SHIFT_RECONNECTION);
+  else if (r.shift == "hybrid") o.set_shift(v1::SHIFT_HYBRID);
+  else if (!r.shift.empty()) throw std::runtime_error("--shift: '" + r.shift + "' is not one of reconnection, hybrid");
+  if (r.mis == "balance") o.set_mis(v1::MIS_BALANCE);
+  else if (r.mis == "pairwise") o.set_mis(v1::MIS_PAIRWISE);
+  else if (!r.mis.empty()) throw std::runtime_error("--mis: '" + r.mis + "' is not one of balance, pairwise");
+  if (r.suffix == "auto") o.set_suffix(v1::SUFFIX_AUTO);
+  else if (r.suffix == "replay") o.set_suffix(v1::SUFFIX_REPLAY);
+  else if (r.suffix == "cached") o.set_suffix(v1::SUFFIX_CACHED);
+  else if (r.suffix == "fail") o.set_suffix(v1::SUFFIX_FAIL);
+  else if (!r.suffix.empty()) throw std::runtime_error("--suffix: '" + r.suffix + "' is not one of auto, replay, cached, fail");
+  if (r.confidence_cap) o.set_confidence_cap(*r.confidence_cap);
+  if (r.spatial_neighbors) o.set_spatial_neighbors(*r.spatial_neighbors);
+  if (r.spatial_radius) o.set_spatial_radius(*r.spatial_radius);
+  if (r.initial_candidates) o.set_initial_candidates(*r.initial_candidates);
+  if (r.light_candidates) o.set_light_candidates(*r.light_candidates);
+  if (r.no_temporal) o.set_temporal_reuse(false);
+  if (r.no_spatial) o.set_spatial_reuse(false);
+  if (r.biased) o.set_unbiased(false);
+}
+
+}  // namespace strata::client

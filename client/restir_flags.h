@@ -1,0 +1,31 @@
+#pragma once
+// The ReSTIR options of a session as command-line flags (strata stream, strata eval): each is sent
+// only when given, so that the server's defaults apply otherwise (RenderOptions in render.proto).
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "strata/v1/render.pb.h"
+
+namespace strata::client {
+
+struct RestirFlags {
+  std::string shift, mis, suffix;  // empty: not given
+  std::optional<float> confidence_cap, spatial_radius;
+  std::optional<uint32_t> spatial_neighbors, initial_candidates, light_candidates;
+  bool no_temporal = false, no_spatial = false, biased = false;
+};
+
+// Adds --shift, --mis, --suffix, --confidence-cap, --spatial-neighbors, --spatial-radius,
+// --initial-candidates, --light-candidates, --no-temporal, --no-spatial and --biased to `cmd`.
+void add_restir_flags(CLI::App* cmd, RestirFlags& r);
+
+// The given flags as they are written on a command line ("" when none is given).
+std::string restir_flags_text(const RestirFlags& r);
+
+// Sets the given flags in `o`; throws std::runtime_error naming a flag whose value is not allowed.
+void set_restir_options(const RestirFlags& r, strata::v1::RenderOptions& o);
+
+}  // namespace strata::client

@@ -1,0 +1,169 @@
+// Suffix replay (docs/ARCHITECTURE.md, "Suffix replay"): the part of a path sample after its
+// reconnection vertex x_k, traced again in the frame a temporal shift maps it into, so that a
+// sample whose suffix saw a moving object, light or occluder is evaluated exactly there instead of
+// being refused as stale (shift_path, restir/path_space.glsl). Only passes that see both frames
+// (STRATA_HISTORY) replay; they bind the light tables for the NEE end.
+//
+// The sample space. Lin et al. 2022 integrate a domain over paths in the solid-angle product
+// measure; strata's suffix keeps (restir/reservoir.h) the direction omega_k leaving x_k in x_k's
+// surface frame, the random numbers u_j (`seed`) of every later decision, and the structure (the
+// segment count n, the technique of the end, and for an NEE end its light candidate). The shift T
+// of the suffix, from the base path x into the target frame's path y, is then:
+//   omega'_k = R omega_k, R the rotation between x_k's surface frames in the two frames;
+//   omega'_j = S_{y_j}(u_j), j = k+1 .. n-1, where omega_j = S_{x_j}(u_j) was the base's sample
+//   (BSDF sampling at x_j, or for an NEE end the light sample of x_{n-1}; both frames choose the
+//   light with this frame's alias table, which HISTORY_LIGHTS_RESELECTED says is the same table);
+// a bijection, since it is the identity on (omega_k, u_{k+1}, ..., u_{n-1}) and each S maps u
+// one-to-one onto the directions of its support. Its Jacobian in the solid-angle measure is the
+// product of the factors (Lin 2022 Eq. 41, applied after x_k):
+//   |d omega'_k / d omega_k| = 1  (R is a rotation),
+//   |d omega'_j / d omega_j| = p_{x_j}(omega_j) / p_{y_j}(omega'_j)  (du = p d omega on both sides),
+// that is suffix_density(x) / suffix_density(y), with suffix_density the product of the densities
+// of the sampled directions (restir/reservoir.h). The path's whole Jacobian multiplies it with the
+// prefix's density(x) / density(y). The reverse shift (the current sample into the previous frame,
+// for the MIS weights) is the same map read backwards, and runs in the previous scene: the previous
+// TLAS, instance transforms and light totals (trace_query_in, instance_in, light_pdf_*).
+#ifndef STRATA_SUFFIX_REPLAY_GLSL
+#define STRATA_SUFFIX_REPLAY_GLSL
+
+#include "restir/path_vertex.glsl"
+#include "restir/restir_data.h"
+#include "sampling/light_sampling.glsl"
+#include "sampling/rng.h"
+
+struct SuffixReplay {
+  uint reason;          // SHIFT_OK or SHIFT_FAIL_*
+  vec3 xk_radiance;     // the radiance arriving at x_k along -omega'_k, as PathSample.xk_radiance defines it
+  float light_pdf_end;  // NEE density of the end from y_{n-1}
+  float suffix_density; // of y's sampled directions after x_k
+  uint rays;
+};
+
+SuffixReplay replay_fail(SuffixReplay r, uint reason) {
+  r.reason = reason;
+  r.xk_radiance = vec3(0.0);
+  return r;
+}
+
+// Light sample u from x in either frame. The current frame's is the initial pass's sample_light;
+// in the previous frame the same emitter and barycentrics are chosen and the point is placed on
+// its triangle as the previous frame's instance transform had it (resolve_surface).
+bool sample_light_in(bool prev, vec3 x, vec3 u, out LightSample ls) {
+  if (!prev) return sample_light(x, u, u_frame, ls);
+  ls = light_sample_none();
+  uint index;
+  if (!choose_light(u, u_frame, index)) return false;
+  if (index == LIGHT_ENVIRONMENT) {
+    ls = environment_light_sample(u, u_frame);
+    ls.pdf = light_pdf_environment(true);
+    return ls.pdf > 0.0;
+  }
+  GpuEmitter e = b_emitters[index];
+  vec2 b = sample_triangle_barycentrics(u.xy);
+  SurfacePoint p;
+  p.instance = e.surface.x;
+  p.geometry = e.surface.y;
+  p.triangle = e.surface.z;
+  p.bary = e.surface.w != 0u ? b.yx : b;  // undo the re-winding of mirrored instances
+  p.lod = instance_in(false, p.instance).lod;
+  ResolvedSurface rs = resolve_surface(true, p);
+  if (rs.reason != RESOLVE_OK) return false;
+  vec3 d = rs.hit.position - x;
+  float dist2 = dot(d, d);
+  if (!(dist2 > 0.0)) return false;
+  float dist = sqrt(dist2);
+  ls.direction = d / dist;
+  ls.distance = dist;
+  float cos_light = -dot(rs.hit.geo_normal, ls.direction);
+  bool double_sided = (floatBitsToUint(e.p2_flags.w) & MATERIAL_DOUBLE_SIDED) != 0u;
+  if (cos_light <= 0.0 && !double_sided) return false;  // one-sided emitter seen from behind
+  ls.radiance = e.emission.rgb;
+  ls.instance = p.instance;
+  ls.geometry = p.geometry;
+  ls.triangle = p.triangle;
+  ls.bary = p.bary;
+  ls.area = rs.hit.area;
+  ls.cos_light = abs(cos_light);
+  ls.pdf = light_pdf_emitter(true, e.emission.rgb, rs.hit.area, double_sided, dist, ls.cos_light);
+  return ls.pdf > 0.0 && !isinf(ls.pdf);
+}
+
+// Traces y's suffix from x_k (`xk`, loaded in the target frame and entered from the offset path's
+// y_{k-1}) along omega'_k = `dk` (world space) in the current (prev = false) or previous frame.
+SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {
+  SuffixReplay r;
+  r.reason = SHIFT_OK;
+  r.xk_radiance = vec3(0.0);
+  r.light_pdf_end = 0.0;
+  r.suffix_density = 1.0;
+  r.rays = 0u;
+  uint n = y.segments;
+  bool nee = (y.flags & SAMPLE_NEE) != 0u;
+  bool escaped = (y.flags & SAMPLE_ESCAPED) != 0u;
+  Vertex v = xk;
+  vec3 dir = dk;
+  vec3 beta = vec3(1.0);  // prod f_s |cos| over y_{k+1} .. y_j
+  float pdf = 0.0;        // density of `dir` at y_j (j > k)
+  // Segment j leaves y_j. Every segment is one query at a single call site: a closest hit while
+  // the path goes on, or the visibility of the light sample of an NEE end.
+  for (uint j = y.k; j < n; ++j) {
+    bool last = j + 1u == n;
+    bool light_sample = last && nee && j > y.k;
+    LightSample ls = light_sample_none();
+    if (light_sample) {
+      if ((u_frame.history_flags & HISTORY_LIGHTS_RESELECTED) != 0u) return replay_fail(r, SHIFT_FAIL_STALE);
+      uint base = dim_vertex(j) + DIM_NEE + 3u * y.light_index;
+      vec3 ul = vec3(rng_dim(y.seed, base), rng_dim(y.seed, base + 1u), rng_dim(y.seed, base + 2u));
+      if (!sample_light_in(prev, v.position, ul, ls)) return replay_fail(r, SHIFT_FAIL_REPLAY);
+      // NEE does not sample grazing light (restir_initial.comp): outside the structure.
+      if (!isinf(ls.distance) && ls.cos_light < SHIFT_MIN_COS) return replay_fail(r, SHIFT_FAIL_STRUCTURE);
+      dir = ls.direction;
+    } else if (j > y.k) {
+      uint base = dim_vertex(j) + DIM_BSDF;
+      vec3 u = vec3(rng_dim(y.seed, base), rng_dim(y.seed, base + 1u), rng_dim(y.seed, base + 2u));
+      vec3 wi;
+      vec3 weight;
+      if (!bsdf_sample(v.bsdf, v.wo, u, wi, weight, pdf)) return replay_fail(r, SHIFT_FAIL_REPLAY);
+      dir = to_world(wi, v.t, v.b, v.ns);
+      if (dot(dir, v.ng) <= 0.0) return replay_fail(r, SHIFT_FAIL_REPLAY);
+      beta *= weight * pdf;
+      r.suffix_density *= pdf;
+    }
+    float t_max = light_sample && !isinf(ls.distance) ? ls.distance * (1.0 - SHADOW_RAY_SHORTEN) : 1e30;
+    RayHit h;
+    r.rays++;
+    bool hit = trace_query_in(prev, spawn(v), dir, t_max, light_sample, h);
+    if (light_sample) {
+      if (hit) return replay_fail(r, SHIFT_FAIL_OCCLUDED);
+      vec3 fs = scatter(v, dir);
+      if (!(luminance(fs) > 0.0)) return replay_fail(r, SHIFT_FAIL_ZERO);
+      r.xk_radiance = beta * fs * ls.radiance * technique_weight(true, ls.pdf, scatter_pdf(v, dir));
+      r.light_pdf_end = ls.pdf;
+      r.suffix_density *= ls.pdf;
+      return r;
+    }
+    if (hit == (last && escaped)) return replay_fail(r, SHIFT_FAIL_REPLAY);  // must hit, or escape at an escaped end
+    vec3 le = u_frame.environment.rgb;
+    float pl = light_pdf_environment(prev);
+    if (hit) {
+      Vertex w = load_vertex(prev, h, dir);
+      if (!last) {
+        v = w;
+        continue;
+      }
+      // An NEE end found along the kept omega'_k (j = k) must lie where NEE samples.
+      if (nee && w.cos_in < SHIFT_MIN_COS) return replay_fail(r, SHIFT_FAIL_STRUCTURE);
+      le = w.emission;
+      pl = light_pdf_emitter(prev, w.material_emission, w.area, w.double_sided, length(w.position - v.position), w.cos_in);
+    }
+    if (!(luminance(le) > 0.0)) return replay_fail(r, SHIFT_FAIL_ZERO);
+    r.light_pdf_end = pl;
+    // With j = k the end's MIS weight needs the BSDF at x_k, which shift_path applies (as for a
+    // kept suffix); otherwise it is part of the radiance arriving at x_k.
+    r.xk_radiance = j == y.k ? le : beta * le * technique_weight(false, pl, pdf);
+    return r;
+  }
+  return replay_fail(r, SHIFT_FAIL_STRUCTURE);  // n <= k: no suffix
+}
+
+#endif
