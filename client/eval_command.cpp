@@ -33,6 +33,9 @@ struct EvalArgs : EvalSettings {
   float exposure = 0.0f;  // PNG insets
   float shutter_value = 0.0f;     // --shutter, when given
   uint32_t splats_value = 1;      // --splats-per-frame, when given
+  std::string spatial_reuse_value = "on";  // --spatial-reuse, when given
+  uint32_t spatial_neighbors_value = 1;    // --spatial-neighbors, when given
+  float spatial_radius_value = 0.0f;       // --spatial-radius, when given
 };
 
 std::vector<std::string> split(const std::string& list) {
@@ -63,6 +66,9 @@ std::string command_line(const EvalArgs& a) {
   if (a.max_depth) s << " --max-depth " << a.max_depth;
   if (a.shutter) s << " --shutter " << *a.shutter;
   if (a.splats_per_frame) s << " --splats-per-frame " << *a.splats_per_frame;
+  if (a.spatial_reuse) s << " --spatial-reuse " << (*a.spatial_reuse ? "on" : "off");
+  if (a.spatial_neighbors) s << " --spatial-neighbors " << *a.spatial_neighbors;
+  if (a.spatial_radius) s << " --spatial-radius " << *a.spatial_radius;
   if (a.equal_time) s << " --equal-time";
   s << " --out " << a.out;
   return s.str();
@@ -216,6 +222,9 @@ int run_eval(EvalArgs& a, bool frames_given) {
               {"camera_path", a.camera_path.empty() ? nlohmann::json() : nlohmann::json(a.camera_path)},
               {"shutter", a.shutter ? nlohmann::json(*a.shutter) : nlohmann::json()},
               {"splats_per_frame", a.splats_per_frame ? nlohmann::json(*a.splats_per_frame) : nlohmann::json()},
+              {"spatial_reuse", a.spatial_reuse ? nlohmann::json(*a.spatial_reuse) : nlohmann::json()},
+              {"spatial_neighbors", a.spatial_neighbors ? nlohmann::json(*a.spatial_neighbors) : nlohmann::json()},
+              {"spatial_radius", a.spatial_radius ? nlohmann::json(*a.spatial_radius) : nlohmann::json()},
               {"command_line", command_line(a)}};
   uint64_t non_pt = 0;
   for (const auto& m : a.methods) non_pt += m != "pt";
@@ -260,6 +269,14 @@ Runner add_eval_command(CLI::App& app) {
   auto* splats = cmd->add_option("--splats-per-frame", a->splats_value,
                                  "RenderOptions.splats_per_frame of the methods' sessions, 1..64 (restir-splat*: K splats "
                                  "over the shutter; default: the server's)");
+  auto* spatial = cmd->add_option("--spatial-reuse", a->spatial_reuse_value,
+                                  "RenderOptions.spatial_reuse of the methods' sessions, on | off (default: the server's)")
+                      ->check(CLI::IsMember({"on", "off"}));
+  auto* neighbors = cmd->add_option("--spatial-neighbors", a->spatial_neighbors_value,
+                                    "RenderOptions.spatial_neighbors of the methods' sessions, 0..8 (default: the server's)");
+  auto* radius = cmd->add_option("--spatial-radius", a->spatial_radius_value,
+                                 "RenderOptions.spatial_radius of the methods' sessions in pixels, 1..256 (default: the "
+                                 "server's, from the image height)");
   cmd->add_option("--width", a->width, "image width")->capture_default_str();
   cmd->add_option("--height", a->height, "image height")->capture_default_str();
   cmd->add_option("--reference-spp", a->reference_spp, "samples per pixel of each reference")->capture_default_str();
@@ -272,9 +289,12 @@ Runner add_eval_command(CLI::App& app) {
   cmd->add_option("--exposure", a->exposure, "exposure of the PNG insets in stops")->capture_default_str();
   cmd->add_option("--out", a->out, "output directory")->capture_default_str();
   cmd->add_option("--timeout", a->timeout_s, "seconds for each call (a reference can take long)")->capture_default_str();
-  return [a, frames, shutter, splats] {
+  return [a, frames, shutter, splats, spatial, neighbors, radius] {
     if (shutter->count() > 0) a->shutter = a->shutter_value;
     if (splats->count() > 0) a->splats_per_frame = a->splats_value;
+    if (spatial->count() > 0) a->spatial_reuse = a->spatial_reuse_value == "on";
+    if (neighbors->count() > 0) a->spatial_neighbors = a->spatial_neighbors_value;
+    if (radius->count() > 0) a->spatial_radius = a->spatial_radius_value;
     return run_eval(*a, frames->count() > 0);
   };
 }

@@ -134,6 +134,9 @@ void EvalClient::run_method(const std::string& scene, const std::string& method,
   req.mutable_options()->set_spp(spp);
   if (s.max_depth) req.mutable_options()->set_max_depth(s.max_depth);
   if (s.splats_per_frame) req.mutable_options()->set_splats_per_frame(*s.splats_per_frame);
+  if (s.spatial_reuse) req.mutable_options()->set_spatial_reuse(*s.spatial_reuse);
+  if (s.spatial_neighbors) req.mutable_options()->set_spatial_neighbors(*s.spatial_neighbors);
+  if (s.spatial_radius) req.mutable_options()->set_spatial_radius(*s.spatial_radius);
   req.add_encodings(v1::IMAGE_ENCODING_RAW_RGBA16F);
   v1::Session session;
   {

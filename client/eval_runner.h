@@ -32,6 +32,10 @@ struct EvalSettings {
   std::vector<v1::FrameInput> path;  // its entries, one per frame (eval_frames.h)
   std::optional<float> shutter;    // --shutter: every entry's camera.shutter
   std::optional<uint32_t> splats_per_frame;  // the sessions' RenderOptions.splats_per_frame (unset: the server's)
+  // The sessions' spatial reuse options (unset: the server's; the server checks the ranges).
+  std::optional<bool> spatial_reuse;
+  std::optional<uint32_t> spatial_neighbors;
+  std::optional<float> spatial_radius;
   std::string out = "out/eval";
   double timeout_s = 3600.0;       // per RPC (a reference may take long on lavapipe)
 };

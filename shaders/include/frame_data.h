@@ -85,6 +85,7 @@ CONST_DEF uint COUNTER_SPATIAL_FAIL = 24u;          // + reason
 CONST_DEF uint COUNTER_SPLAT_BACKUP_SELECTED = 32u; // restir-splat-backup: pixels whose output is the backup sample
 CONST_DEF uint COUNTER_SPLATS_OFFSCREEN = 33u;      // restir-splat: forward splats that projected outside the image
 CONST_DEF uint COUNTER_SPLATS_OCCLUDED = 34u;       // restir-splat: forward splats whose primary hit is not visible now
+CONST_DEF uint COUNTER_SPATIAL_FILTERED = 38u;      // spatial: neighbour candidates refused by the surface filter
 CONST_DEF uint COUNTER_COUNT = 40u;
 
 STRATA_NAMESPACE_END
