@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "harness.h"
+#include "render/renderer.h"
 
 namespace strata::test {
 namespace {
@@ -52,7 +53,10 @@ TEST_F(RestirTest, GatherSessionReportsItsOptionsAndStreamsReuseStatistics) {
   EXPECT_EQ(s.options().mis(), v1::MIS_PAIRWISE);
   EXPECT_FLOAT_EQ(s.options().confidence_cap(), 20.0f);
   EXPECT_EQ(s.options().spatial_neighbors(), 1u);
-  EXPECT_FLOAT_EQ(s.options().spatial_radius(), 30.0f);
+  // Not requested: from the image height, 2.5% with a floor of 4 px (16 px high: the floor).
+  EXPECT_FLOAT_EQ(s.options().spatial_radius(), render::RestirOptions::default_spatial_radius(16));
+  EXPECT_FLOAT_EQ(s.options().spatial_radius(), 4.0f);
+  EXPECT_FLOAT_EQ(create_ok(stub(), restir_request("restir-gather", 16, 400)).options().spatial_radius(), 10.0f);
   EXPECT_EQ(s.options().initial_candidates(), 1u);
   EXPECT_EQ(s.options().light_candidates(), 2u);
   EXPECT_TRUE(s.options().temporal_reuse());
