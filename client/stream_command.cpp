@@ -278,7 +278,7 @@ Runner add_stream_command(CLI::App& app) {
   cmd->add_option("--mis", r.mis, "ReSTIR spatial MIS weights: balance | pairwise (default: the server's, pairwise)")
       ->check(CLI::IsMember({"balance", "pairwise"}));
   auto* cap = cmd->add_option("--confidence-cap", r.confidence_cap, "ReSTIR confidence cap of the temporal history (1..1000; default 20)");
-  auto* neighbors = cmd->add_option("--spatial-neighbors", r.spatial_neighbors, "ReSTIR spatial neighbours per pixel (0..8; default 1)");
+  auto* neighbors = cmd->add_option("--spatial-neighbors", r.spatial_neighbors, "ReSTIR spatial neighbours per pixel (0..8; default 2)");
   auto* radius = cmd->add_option("--spatial-radius", r.spatial_radius, "ReSTIR spatial radius in pixels (1..256; default 2.5% of the image height, at least 4)");
   auto* initial = cmd->add_option("--initial-candidates", r.initial_candidates, "ReSTIR candidate paths per pixel (1..64; default 1)");
   auto* lights = cmd->add_option("--light-candidates", r.light_candidates, "ReSTIR NEE samples per path vertex (1..32; default 1)");

@@ -34,7 +34,7 @@ struct RestirOptions {
   bool temporal = true;              // temporal reuse (gather: backprojection)
   bool spatial = true;               // spatial reuse
   float confidence_cap = 20.0f;      // c_cap of the temporal history
-  uint32_t spatial_neighbors = 1;    // N
+  uint32_t spatial_neighbors = 2;    // N (chosen by measurement: docs/BENCHMARKS.md, "Spatial reuse: filter and radius")
   float spatial_radius = 0.0f;       // pixels; 0: automatic, default_spatial_radius(height)
   uint32_t initial_candidates = 1;   // N_init paths per pixel for the canonical sample
   uint32_t light_candidates = 1;     // NEE samples per path vertex (the DI tutorial uses 32 at x1)
