@@ -91,9 +91,11 @@ Runner add_render_command(CLI::App& app) {
   auto& r = a->settings.restir;
   cmd->add_option("--shift", r.shift, "ReSTIR shift: reconnection | hybrid")->capture_default_str();
   cmd->add_option("--mis", r.mis, "ReSTIR spatial MIS: balance | pairwise")->capture_default_str();
+  cmd->add_option("--suffix", r.suffix, "ReSTIR path suffixes when the scene changed: auto | replay | cached (biased) | fail")
+      ->capture_default_str();
   cmd->add_option("--confidence-cap", r.confidence_cap, "ReSTIR confidence cap of the temporal history")->capture_default_str();
   cmd->add_option("--spatial-neighbors", r.spatial_neighbors, "ReSTIR spatial neighbours (0..8)")->capture_default_str();
-  cmd->add_option("--spatial-radius", r.spatial_radius, "ReSTIR spatial radius in pixels")->capture_default_str();
+  cmd->add_option("--spatial-radius", r.spatial_radius, "ReSTIR spatial radius in pixels (0: 2.5% of the height, at least 4 px)")->capture_default_str();
   cmd->add_option("--initial-candidates", r.initial_candidates, "ReSTIR candidate paths per pixel")->capture_default_str();
   cmd->add_option("--light-candidates", r.light_candidates, "ReSTIR NEE samples per vertex")->capture_default_str();
   cmd->add_flag("!--no-temporal", r.temporal, "ReSTIR: no temporal reuse");

@@ -58,9 +58,10 @@ void RestirOptions::validate() const {
               range(RESTIR_MIN_CONFIDENCE_CAP, RESTIR_MAX_CONFIDENCE_CAP));
   require(spatial_neighbors <= RESTIR_MAX_SPATIAL_NEIGHBORS,
           "restir.spatial_neighbors = " + std::to_string(spatial_neighbors) + " is outside " + range(0u, RESTIR_MAX_SPATIAL_NEIGHBORS));
-  require(std::isfinite(spatial_radius) && spatial_radius >= RESTIR_MIN_SPATIAL_RADIUS && spatial_radius <= RESTIR_MAX_SPATIAL_RADIUS,
+  require(spatial_radius == 0.0f ||
+              (std::isfinite(spatial_radius) && spatial_radius >= RESTIR_MIN_SPATIAL_RADIUS && spatial_radius <= RESTIR_MAX_SPATIAL_RADIUS),
           "restir.spatial_radius = " + std::to_string(spatial_radius) + " is outside " +
-              range(RESTIR_MIN_SPATIAL_RADIUS, RESTIR_MAX_SPATIAL_RADIUS) + " pixels");
+              range(RESTIR_MIN_SPATIAL_RADIUS, RESTIR_MAX_SPATIAL_RADIUS) + " pixels (0 = automatic)");
   require(initial_candidates >= 1 && initial_candidates <= RESTIR_MAX_INITIAL_CANDIDATES,
           "restir.initial_candidates = " + std::to_string(initial_candidates) + " is outside " +
               range(1u, RESTIR_MAX_INITIAL_CANDIDATES));
@@ -68,6 +69,11 @@ void RestirOptions::validate() const {
           "restir.light_candidates = " + std::to_string(light_candidates) + " is outside " + range(1u, RESTIR_MAX_LIGHT_CANDIDATES));
   require(splats_per_frame >= 1 && splats_per_frame <= RESTIR_MAX_SPLATS_PER_FRAME,
           "restir.splats_per_frame = " + std::to_string(splats_per_frame) + " is outside " + range(1u, RESTIR_MAX_SPLATS_PER_FRAME));
+}
+
+float RestirOptions::default_spatial_radius(uint32_t height) {
+  const float r = std::max(spatial_radius_floor, spatial_radius_fraction * float(height));
+  return std::min(r, gpu::RESTIR_MAX_SPATIAL_RADIUS);
 }
 
 Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSettings settings)

@@ -37,13 +37,22 @@ struct RestirOptions {
   bool temporal = true;              // temporal reuse (gather: backprojection)
   bool spatial = true;               // spatial reuse
   float confidence_cap = 20.0f;      // c_cap of the temporal history
-  uint32_t spatial_neighbors = 1;    // N
-  float spatial_radius = 30.0f;      // pixels
+  uint32_t spatial_neighbors = 2;    // N (chosen by measurement: docs/BENCHMARKS.md, "Spatial reuse: filter and radius")
+  float spatial_radius = 0.0f;       // pixels; 0: automatic, default_spatial_radius(height)
   uint32_t initial_candidates = 1;   // N_init paths per pixel for the canonical sample
   uint32_t light_candidates = 1;     // NEE samples per path vertex (the DI tutorial uses 32 at x1)
   bool direct_lighting = false;      // ReSTIR DI: paths of one bounce (camera, x1, light)
   uint32_t splats_per_frame = 1;     // restir-splat*: K time partitions over an open shutter (RS-main Eq. 19)
   void validate() const;
+  // The radius the spatial pass uses for an image `height` pixels high.
+  float spatial_radius_pixels(uint32_t height) const { return spatial_radius > 0.0f ? spatial_radius : default_spatial_radius(height); }
+
+  // The automatic radius: a fraction of the image height with a floor in pixels (the references
+  // use 20-32 px at 1080p, 2-3% of the height; a floor keeps a few candidate pixels in small
+  // images). Chosen by measurement: docs/BENCHMARKS.md, "Spatial reuse: filter and radius".
+  static constexpr float spatial_radius_fraction = 0.025f;
+  static constexpr float spatial_radius_floor = 4.0f;  // pixels
+  static float default_spatial_radius(uint32_t height);
 };
 
 struct RenderSettings {

@@ -89,7 +89,12 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const v1::Ren
                      : method.layers ? "neighbours per pixel (front layer only)" : "neighbours resampled per pixel"));
   out.push_back(make("spatial_radius", asked(req.has_spatial_radius(), format_float(req.spatial_radius())),
                      format_float(eff.spatial_radius()), spatial,
-                     !method.reuse ? no_reuse : spatial ? "pixels around each pixel where neighbours are picked" : no_spatial));
+                     !method.reuse ? no_reuse : spatial ? "pixels around each pixel where neighbours are picked" +
+                                      (req.has_spatial_radius() ? std::string()
+                                                                 : "; default: " + format_float(100.0f * render::RestirOptions::spatial_radius_fraction) +
+                                                                       "% of the image height, at least " +
+                                                                       format_float(render::RestirOptions::spatial_radius_floor) +
+                                                                       " px (the references use 20-32 px at 1080p)") : no_spatial));
   out.push_back(make("initial_candidates", asked(req.has_initial_candidates(), u(req.initial_candidates())),
                      u(eff.initial_candidates()), method.reuse, method.reuse ? "N_init paths per canonical sample" : no_reuse));
   out.push_back(make("light_candidates", asked(req.has_light_candidates(), u(req.light_candidates())),

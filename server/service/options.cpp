@@ -90,7 +90,7 @@ void normalize(v1::RenderOptions& o) {
   if (o.lod_mapping() == v1::LOD_MAPPING_UNSPECIFIED) o.set_lod_mapping(v1::LOD_MAPPING_AUTO);
 }
 
-v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const ServiceLimits& limits) {
+v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const ServiceLimits& limits, uint32_t height) {
   v1::RenderOptions o;
   o.set_spp(1);
   o.set_max_depth(std::min<uint32_t>(16, limits.max_depth));
@@ -103,7 +103,7 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const Servic
   const render::RestirOptions restir;
   o.set_confidence_cap(restir.confidence_cap);
   o.set_spatial_neighbors(restir.spatial_neighbors);
-  o.set_spatial_radius(restir.spatial_radius);
+  o.set_spatial_radius(restir.spatial_radius_pixels(height));
   o.set_initial_candidates(restir.initial_candidates);
   o.set_light_candidates(restir.light_candidates);
   o.set_temporal_reuse(restir.temporal);

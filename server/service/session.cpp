@@ -148,16 +148,21 @@ std::optional<Session::Clock::time_point> Session::idle_since() const {
 void Session::apply_locked(const PendingInput& input, std::string& reset_reason) {
   render::RenderSettings next = settings_;
   v1::RenderOptions options;
+  bool radius_requested = false;
   {
     std::lock_guard lock(mu_);
     options = spec_.options;
+    radius_requested = spec_.requested.has_spatial_radius();
   }
   options.MergeFrom(input.options);
   normalize(options);
+  if (input.resolution) std::tie(next.width, next.height) = *input.resolution;
+  // A radius never requested follows the image height (render::RestirOptions::default_spatial_radius).
+  if (!radius_requested && !input.options.has_spatial_radius())
+    options.set_spatial_radius(render::RestirOptions::default_spatial_radius(next.height));
   next.spp = options.spp();
   next.max_depth = options.max_depth();
   next.restir = restir_options(options);
-  if (input.resolution) std::tie(next.width, next.height) = *input.resolution;
 
   std::string changes;
   auto add = [&](const std::string& c) { changes += (changes.empty() ? "" : "; ") + c; };

@@ -90,6 +90,7 @@ CONST_DEF uint COUNTER_SPLATS_OCCLUDED = 34u;       // restir-splat: forward spl
 CONST_DEF uint COUNTER_SUFFIX_REPLAYED = 35u;      // temporal shifts that traced their suffix again (restir/suffix_replay.glsl)
 CONST_DEF uint COUNTER_SUFFIX_KEPT = 36u;          // temporal shifts that kept the stored suffix (unchanged scene, or `cached`)
 CONST_DEF uint COUNTER_RAYS_REPLAY = 37u;          // rays of suffix replays, of the pass temporal / splat_project
+CONST_DEF uint COUNTER_SPATIAL_FILTERED = 38u;      // spatial: neighbour candidates refused by the surface filter
 CONST_DEF uint COUNTER_RAYS_REPLAY_RESAMPLE = 39u; // rays of suffix replays in splat_resample (reverse splats, backup)
 CONST_DEF uint COUNTER_COUNT = 40u;
 

@@ -14,6 +14,8 @@ CONST_DEF float RESTIR_MIN_CONFIDENCE_CAP = 1.0f;
 CONST_DEF float RESTIR_MAX_CONFIDENCE_CAP = 1000.0f;
 CONST_DEF float RESTIR_MIN_SPATIAL_RADIUS = 1.0f;   // pixels
 CONST_DEF float RESTIR_MAX_SPATIAL_RADIUS = 256.0f;
+// Candidates drawn per neighbour slot until one passes the surface filter (restir_spatial.comp).
+CONST_DEF uint RESTIR_SPATIAL_TRIES = 4u;
 
 STRATA_NAMESPACE_END
 #endif

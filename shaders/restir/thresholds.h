@@ -16,6 +16,11 @@ CONST_DEF float RECONNECT_MIN_EDGE_RELATIVE = 1e-2f;
 CONST_DEF float SHIFT_MIN_COS = 1e-3f;
 // Jacobians outside [1/J_MAX, J_MAX] fail the shift instead of producing a huge weight.
 CONST_DEF float SHIFT_MAX_JACOBIAN = 1e4f;
+// Spatial neighbours are refused when their pixel-centre surface turns away from this pixel's by
+// more than 25 degrees or lies more than 10% further or nearer along the centre ray: the geometric
+// similarity test of Bitterli et al. 2020 (ReSTIR DI, section 6.1), taken by Lin et al. 2022.
+CONST_DEF float SPATIAL_MIN_NORMAL_COS = 0.906f;  // cos 25 degrees
+CONST_DEF float SPATIAL_MAX_DEPTH_RELATIVE = 0.1f;
 // Default confidence cap c_cap (docs/ARCHITECTURE.md, Methods).
 CONST_DEF float CONFIDENCE_CAP_DEFAULT = 20.0f;
 

@@ -49,7 +49,7 @@ struct Args {
   uint32_t foliage_ref_spp = 0;  // 0: same as --ref-spp
   uint32_t ref_spp_per_call = 64;
   uint32_t max_depth = 6;
-  float spatial_radius = 30.0f;  // RestirOptions default
+  float spatial_radius = 0.0f;  // RestirOptions default: from the image height
   uint32_t seeds = 1;     // restir error: mean over this many independent sequences
   bool ablation = false;  // also initial-only, temporal-only and spatial-only variants
   std::string out = "restir_bench.json";
@@ -313,7 +313,7 @@ int main(int argc, char** argv) {
   app.add_option("--ref-spp-per-call", a.ref_spp_per_call)->capture_default_str();
   app.add_option("--max-depth", a.max_depth)->capture_default_str();
   app.add_option("--seeds", a.seeds, "restir error: mean over this many independent sequences")->capture_default_str();
-  app.add_option("--spatial-radius", a.spatial_radius, "restir spatial radius in pixels")->capture_default_str();
+  app.add_option("--spatial-radius", a.spatial_radius, "restir spatial radius in pixels (0: from the image height)")->capture_default_str();
   app.add_flag("--ablation", a.ablation, "also initial-only, temporal-only and spatial-only restir variants");
   app.add_option("--out", a.out, "JSON output path")->capture_default_str();
   app.add_option("--device", a.device, "Vulkan device name substring");

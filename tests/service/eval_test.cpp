@@ -131,6 +131,23 @@ TEST(EvalTest, StrataEvalWritesTheReportAndReusesCachedReferences) {
   const auto doc1 = nlohmann::json::parse(read_file(dir.path / "first" / "results.json"));
   EXPECT_EQ(doc1["runs"][0]["frames"][2]["whole"], doc2["runs"][0]["frames"][2]["whole"]);
   EXPECT_EQ(size_t(std::distance(fs::directory_iterator(dir.path / "cache"), fs::directory_iterator{})), keys.size());
+
+  // The ReSTIR flags reach the sessions (the restir-gather errors change) and the record.
+  auto args = eval_args(daemon.address(), dir.path / "third");
+  for (const char* a : {"--suffix", "fail", "--spatial-neighbors", "3", "--spatial-radius", "5", "--no-spatial"}) args.push_back(a);
+  const auto third = run_process(args, 300s);
+  ASSERT_EQ(third.exit_code, 0) << third.output;
+  const auto doc3 = nlohmann::json::parse(read_file(dir.path / "third" / "results.json"));
+  EXPECT_EQ(doc3["meta"]["restir_options"], "--suffix fail --spatial-neighbors 3 --spatial-radius 5 --no-spatial");
+  EXPECT_NE(doc3["meta"]["command_line"].get<std::string>().find("--suffix fail --spatial-neighbors 3 --spatial-radius 5 --no-spatial"),
+            std::string::npos);
+  auto gather = [](const nlohmann::json& doc) {
+    for (const auto& run : doc["runs"])
+      if (run["method"] == "restir-gather" && !run["equal_time_pt"].get<bool>()) return run["frames"][2]["whole"];
+    return nlohmann::json();
+  };
+  ASSERT_FALSE(gather(doc3).is_null());
+  EXPECT_NE(gather(doc3), gather(doc1)) << "spatial reuse off must change restir-gather's image";
 }
 
 TEST(EvalTest, UnknownScenesAndMethodsAreRefusedBeforeAnyWork) {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "harness.h"
+#include "render/renderer.h"
 
 namespace strata::test {
 namespace {
@@ -51,8 +52,11 @@ TEST_F(RestirTest, GatherSessionReportsItsOptionsAndStreamsReuseStatistics) {
   EXPECT_EQ(s.options().shift(), v1::SHIFT_HYBRID);
   EXPECT_EQ(s.options().mis(), v1::MIS_PAIRWISE);
   EXPECT_FLOAT_EQ(s.options().confidence_cap(), 20.0f);
-  EXPECT_EQ(s.options().spatial_neighbors(), 1u);
-  EXPECT_FLOAT_EQ(s.options().spatial_radius(), 30.0f);
+  EXPECT_EQ(s.options().spatial_neighbors(), 2u);
+  // Not requested: from the image height, 2.5% with a floor of 4 px (16 px high: the floor).
+  EXPECT_FLOAT_EQ(s.options().spatial_radius(), render::RestirOptions::default_spatial_radius(16));
+  EXPECT_FLOAT_EQ(s.options().spatial_radius(), 4.0f);
+  EXPECT_FLOAT_EQ(create_ok(stub(), restir_request("restir-gather", 16, 400)).options().spatial_radius(), 10.0f);
   EXPECT_EQ(s.options().initial_candidates(), 1u);
   EXPECT_EQ(s.options().light_candidates(), 2u);
   EXPECT_TRUE(s.options().temporal_reuse());
@@ -66,7 +70,7 @@ TEST_F(RestirTest, GatherSessionReportsItsOptionsAndStreamsReuseStatistics) {
   EXPECT_EQ(decision(s, "light_candidates")->requested(), "2");
   EXPECT_EQ(decision(s, "light_candidates")->value(), "2");
   EXPECT_EQ(decision(s, "spatial_neighbors")->requested(), "");
-  EXPECT_EQ(decision(s, "spatial_neighbors")->value(), "1");
+  EXPECT_EQ(decision(s, "spatial_neighbors")->value(), "2");
 
   const auto frames = stream_frames(stub(), s.name(), 3);
   ASSERT_EQ(frames.size(), 3u);
@@ -146,21 +150,21 @@ TEST_F(RestirTest, OptionChangesRecreateTheGpuStateAndSayWhy) {
 
   v1::FrameInput change = frame_input(3, "", 0);
   change.mutable_options()->set_spatial_reuse(true);
-  change.mutable_options()->set_spatial_neighbors(2);
+  change.mutable_options()->set_spatial_neighbors(3);
   ASSERT_TRUE(c.send(change));
   auto f3 = c.read();
   ASSERT_TRUE(f3);
   EXPECT_TRUE(f3->history_reset());
-  EXPECT_NE(f3->history_reset_reason().find("spatial_neighbors changed from 1 to 2"), std::string::npos)
+  EXPECT_NE(f3->history_reset_reason().find("spatial_neighbors changed from 2 to 3"), std::string::npos)
       << f3->history_reset_reason();
   EXPECT_NE(f3->history_reset_reason().find("spatial_reuse changed from false to true"), std::string::npos)
       << f3->history_reset_reason();
 
   v1::Session after;
   ASSERT_TRUE(get_session(stub(), s.name(), &after).ok());
-  EXPECT_EQ(after.options().spatial_neighbors(), 2u);
+  EXPECT_EQ(after.options().spatial_neighbors(), 3u);
   EXPECT_TRUE(after.options().spatial_reuse());
-  EXPECT_EQ(decision(after, "spatial_neighbors")->requested(), "2");
+  EXPECT_EQ(decision(after, "spatial_neighbors")->requested(), "3");
   EXPECT_TRUE(decision(after, "spatial_radius")->applies());
 
   // spp != 1 in an option change ends the stream with INVALID_ARGUMENT before anything renders.

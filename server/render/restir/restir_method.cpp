@@ -23,7 +23,7 @@ RestirMethod::RestirMethod(const SharedResources& shared, const RenderSettings& 
         break;
       case StageKind::shade: stages_.push_back(make_shade_stage(state_)); break;
       case StageKind::primary:
-        if (o.temporal) stages_.push_back(make_primary_stage(state_));  // only the temporal stages read it
+        if (o.temporal || o.spatial) stages_.push_back(make_primary_stage(state_));  // the temporal and spatial stages read it
         break;
       case StageKind::path_trace: break;
     }
@@ -66,7 +66,7 @@ std::vector<PassDecision> RestirMethod::decisions() const {
     if (const Stage* s = find(kind)) d.push_back(s->decision());
     else d.push_back({pass, false, absent});
   };
-  add(StageKind::primary, "primary", "no temporal stage reads pixel-centre hits (restir.temporal = false)");
+  add(StageKind::primary, "primary", "no stage reads pixel-centre hits (restir.temporal = false, restir.spatial = false)");
   add(StageKind::initial, "initial", "");
   add(state_.spec.temporal, "temporal", "disabled (restir.temporal = false)");
   add(StageKind::spatial, "spatial", "disabled (restir.spatial = false)");
@@ -100,6 +100,7 @@ void RestirMethod::collect(std::span<const uint32_t> c, FrameStats& s) const {
   s.reuse["scene.instances_changed"] = state_.shared.scene.changed_instances();  // since the previous frame
   s.reuse["spatial.shifts"] = c[COUNTER_SPATIAL_SHIFTS];
   s.reuse["spatial.selected"] = c[COUNTER_SPATIAL_SELECTED];
+  s.reuse["spatial.filtered"] = c[COUNTER_SPATIAL_FILTERED];  // candidates refused by the surface filter
   for (uint32_t r = 1; r < SHIFT_REASONS; ++r) {
     s.shift_failures[std::string("temporal.") + reasons[r]] = c[COUNTER_TEMPORAL_FAIL + r];
     s.shift_failures[std::string("spatial.") + reasons[r]] = c[COUNTER_SPATIAL_FAIL + r];

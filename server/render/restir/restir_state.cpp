@@ -18,7 +18,7 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
   c.shift_mode = o.shift == "reconnection" ? gpu::SHIFT_RECONNECTION : gpu::SHIFT_HYBRID;
   c.mis_mode = o.mis == "balance" ? gpu::MIS_BALANCE : gpu::MIS_PAIRWISE;
   c.confidence_cap = o.confidence_cap;
-  c.spatial_radius = o.spatial_radius;
+  c.spatial_radius = o.spatial_radius_pixels(s.height);
   c.spatial_neighbors = o.spatial_neighbors;
   c.flags = (o.unbiased ? gpu::RESTIR_UNBIASED : 0u) | (spec.backup ? gpu::RESTIR_SPLAT_BACKUP : 0u);
   c.splats_per_frame = o.splats_per_frame;
@@ -55,8 +55,9 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
   history = PingPong(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (history)");
   // Per domain: f(Y) of the reservoir there, then (second half) what the camera rays see directly.
   contribution = device_storage(ctx, 2 * sizeof(glm::vec4) * domains, "contribution");
-  // The temporal stages read the visibility buffer; without temporal reuse there is no primary stage.
-  if (settings.restir.temporal)
+  // The temporal stages and the spatial stage's neighbour filter read the visibility buffer; without
+  // either there is no primary stage.
+  if (settings.restir.temporal || settings.restir.spatial)
     visibility = PingPong(ctx, sizeof(gpu::GpuPrimaryHit) * size_t(width) * height, "visibility buffer");
 }
 

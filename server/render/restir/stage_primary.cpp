@@ -19,7 +19,7 @@ class PrimaryStage : public Stage {
   void record(const StageFrame& f) override {
     timed(f, "primary", [&] { pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height); });
   }
-  PassDecision decision() const override { return {"primary", true, "pixel-centre hits for the temporal stage"}; }
+  PassDecision decision() const override { return {"primary", true, "pixel-centre hits for the temporal stage and the spatial neighbour filter"}; }
   void collect(std::span<const uint32_t>, FrameStats& s) const override {
     s.rays_traced["primary"] = uint64_t(state_.width) * state_.height;  // one ray per pixel
   }
