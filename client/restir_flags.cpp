@@ -12,7 +12,7 @@ void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
   cmd->add_option("--suffix", r.suffix,
                   "ReSTIR path suffixes when the scene changed: auto | replay | cached (biased) | fail (default: the server's, auto)")
       ->check(CLI::IsMember({"auto", "replay", "cached", "fail"}));
-  cmd->add_option("--confidence-cap", r.confidence_cap, "ReSTIR confidence cap of the temporal history (1..1000; default 20)");
+  cmd->add_option("--confidence-cap", r.confidence_cap, "ReSTIR confidence cap of the temporal history (1..1000; default 4)");
   cmd->add_option("--spatial-neighbors", r.spatial_neighbors, "ReSTIR spatial neighbours per pixel (0..8; default 2)");
   cmd->add_option("--spatial-radius", r.spatial_radius, "ReSTIR spatial radius in pixels (1..256; default 2.5% of the image height, at least 4)");
   cmd->add_option("--initial-candidates", r.initial_candidates, "ReSTIR candidate paths per pixel (1..64; default 1)");

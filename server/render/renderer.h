@@ -36,7 +36,7 @@ struct RestirOptions {
   std::string suffix = "auto";
   bool temporal = true;              // temporal reuse (gather: backprojection)
   bool spatial = true;               // spatial reuse
-  float confidence_cap = 20.0f;      // c_cap of the temporal history
+  float confidence_cap = 4.0f;       // c_cap of the temporal history (chosen by measurement: docs/BENCHMARKS.md)
   uint32_t spatial_neighbors = 2;    // N (chosen by measurement: docs/BENCHMARKS.md, "Spatial reuse: filter and radius")
   float spatial_radius = 0.0f;       // pixels; 0: automatic, default_spatial_radius(height)
   uint32_t initial_candidates = 1;   // N_init paths per pixel for the canonical sample

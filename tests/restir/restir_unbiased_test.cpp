@@ -278,19 +278,19 @@ std::vector<Case> cases() {
            {"moving_occluder", moving_occluder}, {"moving_emitter", moving_emitter}, {"suffix_only_motion", suffix_only_motion}}) {
     // Scored where the instance is away (odd frames): the bias of a stored suffix (the other
     // configuration's light) then has one sign in every scored frame instead of cancelling.
-    v.push_back({.name = "replay_" + name, .scene = "cornell", .frames = 6, .options = [](render::RestirOptions& o) {
+    v.push_back({.name = "replay_" + name, .scene = "cornell", .frames = 6, .runs = 64, .options = [](render::RestirOptions& o) {
                    o.spatial = false;
                    o.suffix = "replay";
                  }, .scored = [](uint32_t f) { return f % 2 == 1; }, .state = state});
   }
   // The cases are strong enough to see the stored suffix's bias (the references' `cached`).
-  v.push_back({.name = "cached_moving_emitter_is_biased", .scene = "cornell", .frames = 6,
+  v.push_back({.name = "cached_moving_emitter_is_biased", .scene = "cornell", .frames = 6, .runs = 64,
                .options = [](render::RestirOptions& o) {
                  o.spatial = false;
                  o.suffix = "cached";
                },
                .scored = [](uint32_t f) { return f % 2 == 1; }, .state = moving_emitter, .expect_bias = true});
-  v.push_back({.name = "splat_replay_moving_occluder", .scene = "cornell", .method = "restir-splat", .frames = 6,
+  v.push_back({.name = "splat_replay_moving_occluder", .scene = "cornell", .method = "restir-splat", .frames = 6, .runs = 64,
                .options = [](render::RestirOptions& o) {
                  o.spatial = false;
                  o.suffix = "replay";

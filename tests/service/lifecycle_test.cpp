@@ -28,7 +28,7 @@ TEST_F(LifecycleTest, CreateReportsAnalysisDecisionsAndMemory) {
   EXPECT_EQ(s.state(), v1::Session::IDLE);
   EXPECT_EQ(s.options().spp(), 2u);
   EXPECT_EQ(s.options().max_depth(), 16u);     // default
-  EXPECT_FLOAT_EQ(s.options().confidence_cap(), 20.0f);  // docs/ARCHITECTURE.md, Methods default
+  EXPECT_FLOAT_EQ(s.options().confidence_cap(), 4.0f);  // docs/ARCHITECTURE.md, Methods default
   EXPECT_FLOAT_EQ(s.options().spatial_radius(), 4.0f);  // 2.5% of the 24 px height, at least 4 px
 
   const scene::Scene cornell = scene::builtin_scene("cornell");
