@@ -71,11 +71,6 @@ void RestirOptions::validate() const {
           "restir.splats_per_frame = " + std::to_string(splats_per_frame) + " is outside " + range(1u, RESTIR_MAX_SPLATS_PER_FRAME));
 }
 
-float RestirOptions::default_spatial_radius(uint32_t height) {
-  const float r = std::max(spatial_radius_floor, spatial_radius_fraction * float(height));
-  return std::min(r, gpu::RESTIR_MAX_SPATIAL_RADIUS);
-}
-
 Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSettings settings)
     : ctx_(ctx), settings_(std::move(settings)) {
   settings_.validate();

@@ -1,6 +1,7 @@
 #pragma once
 // The Renderer records one frame of a method's passes for one scene and reads back the image and
 // the frame statistics. Passes a method or scene does not need are not recorded and get no memory.
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -12,6 +13,7 @@
 #include "image/image.h"
 #include "render/frame_stats.h"
 #include "render/method.h"
+#include "restir/restir_limits.h"
 #include "render/method_table.h"
 #include "render/scene_gpu.h"
 
@@ -52,7 +54,10 @@ struct RestirOptions {
   // images). Chosen by measurement: docs/BENCHMARKS.md, "Spatial reuse: filter and radius".
   static constexpr float spatial_radius_fraction = 0.025f;
   static constexpr float spatial_radius_floor = 4.0f;  // pixels
-  static float default_spatial_radius(uint32_t height);
+  // Inline: the service's option defaults use it without the renderer (the fuzz tree links no Vulkan).
+  static float default_spatial_radius(uint32_t height) {
+    return std::min(std::max(spatial_radius_floor, spatial_radius_fraction * float(height)), gpu::RESTIR_MAX_SPATIAL_RADIUS);
+  }
 };
 
 struct RenderSettings {
