@@ -139,15 +139,10 @@ ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed)
   Vertex v;
   for (uint j = 0u; j <= last_traced; ++j) {
     if (j > 0u) {
-      uint base = dim_vertex(j) + DIM_BSDF;
-      vec3 u = vec3(rng_dim(y.seed, base), rng_dim(y.seed, base + 1u), rng_dim(y.seed, base + 2u));
-      vec3 wi;
-      vec3 weight;
-      if (!bsdf_sample(v.bsdf, v.wo, u, wi, weight, pdf)) return shift_fail(r, SHIFT_FAIL_REPLAY);
-      dir = to_world(wi, v.t, v.b, v.ns);
-      if (dot(dir, v.ng) <= 0.0) return shift_fail(r, SHIFT_FAIL_REPLAY);
+      vec3 fs;
+      if (!replay_bsdf_direction(v, y.seed, j, dir, fs, pdf)) return shift_fail(r, SHIFT_FAIL_REPLAY);
       origin = spawn(v);
-      f_prefix *= weight * pdf;
+      f_prefix *= fs;
       density *= pdf;
     }
     bool path_end = k == 0u && j == n - 1u;  // this segment must find the path's last vertex

@@ -9,6 +9,7 @@
 #include "restir/reconnection.h"
 #include "sampling/emitter_pdf.h"
 #include "restir/reservoir.h"
+#include "sampling/rng.h"
 #include "restir/thresholds.h"
 #include "sampling/mis.h"
 #include "sampling/ray_offset.h"
@@ -66,6 +67,22 @@ Vertex make_vertex(SurfaceHit s, RayHit h, uint lod, vec3 dir_in) {
   v.point.bary = h.bary;
   v.point.lod = lod;
   return v;
+}
+
+// The direction that a path's random numbers (`seed`) choose by BSDF sampling at its vertex
+// x_j = v, as the candidate generator drew it and every replay draws it again, with f_s |cos| and
+// the density; false where the lobe sample is unusable or leaves below the surface.
+bool replay_bsdf_direction(Vertex v, uint seed, uint j, out vec3 dir, out vec3 fs, out float pdf) {
+  uint base = dim_vertex(j) + DIM_BSDF;
+  vec3 u = vec3(rng_dim(seed, base), rng_dim(seed, base + 1u), rng_dim(seed, base + 2u));
+  vec3 wi;
+  vec3 weight;
+  dir = vec3(0.0, 0.0, 1.0);
+  fs = vec3(0.0);
+  if (!bsdf_sample(v.bsdf, v.wo, u, wi, weight, pdf)) return false;
+  dir = to_world(wi, v.t, v.b, v.ns);
+  fs = weight * pdf;
+  return dot(dir, v.ng) > 0.0;
 }
 
 // The vertex a ray found in the current (prev = false) or the previous frame.

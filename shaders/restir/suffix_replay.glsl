@@ -119,14 +119,9 @@ SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {
       if (!isinf(ls.distance) && ls.cos_light < SHIFT_MIN_COS) return replay_fail(r, SHIFT_FAIL_STRUCTURE);
       dir = ls.direction;
     } else if (j > y.k) {
-      uint base = dim_vertex(j) + DIM_BSDF;
-      vec3 u = vec3(rng_dim(y.seed, base), rng_dim(y.seed, base + 1u), rng_dim(y.seed, base + 2u));
-      vec3 wi;
-      vec3 weight;
-      if (!bsdf_sample(v.bsdf, v.wo, u, wi, weight, pdf)) return replay_fail(r, SHIFT_FAIL_REPLAY);
-      dir = to_world(wi, v.t, v.b, v.ns);
-      if (dot(dir, v.ng) <= 0.0) return replay_fail(r, SHIFT_FAIL_REPLAY);
-      beta *= weight * pdf;
+      vec3 fs;
+      if (!replay_bsdf_direction(v, y.seed, j, dir, fs, pdf)) return replay_fail(r, SHIFT_FAIL_REPLAY);
+      beta *= fs;
       r.suffix_density *= pdf;
     }
     float t_max = light_sample && !isinf(ls.distance) ? ls.distance * (1.0 - SHADOW_RAY_SHORTEN) : 1e30;

@@ -16,6 +16,7 @@
 #include "metrics/metrics.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"
+#include "support/test_scenes.h"
 
 namespace strata::test {
 namespace {
@@ -67,12 +68,7 @@ TEST_P(ErrorOverFrames, DoesNotRiseOnCarousel) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, ErrorOverFrames, ::testing::Values("restir-gather", "restir-splat"),
-                         [](const ::testing::TestParamInfo<std::string>& p) {
-                           std::string n = p.param;
-                           for (char& c : n)
-                             if (c == '-') c = '_';
-                           return n;
-                         });
+                         [](const ::testing::TestParamInfo<std::string>& p) { return method_test_name(p.param); });
 
 }  // namespace
 }  // namespace strata::test

@@ -17,6 +17,7 @@
 #include "render/renderer.h"
 #include "scene/scene_io.h"
 #include "scene/shutter.h"
+#include "support/test_scenes.h"
 #include "support/unbiasedness.h"
 
 namespace strata::test {
@@ -179,12 +180,6 @@ scene::FrameState blur_camera(const scene::Scene& s, uint32_t f) {
 // Suffix replay (restir/suffix_replay.glsl): cornell with one instance jumping between two places
 // every frame, so that what a path's suffix after its reconnection vertex sees differs between
 // any two frames: a stored suffix radiance is always the other configuration's (cached is biased).
-uint32_t instance_named(const scene::Scene& s, const std::string& name) {
-  for (uint32_t i = 0; i < s.instances.size(); ++i)
-    if (s.instances[i].name == name) return i;
-  throw std::runtime_error("no instance " + name);
-}
-
 scene::FrameState jumping(const scene::Scene& s, uint32_t f, const std::string& name, glm::vec3 offset) {
   scene::FrameState st = s.frame_state(0);
   const uint32_t i = instance_named(s, name);

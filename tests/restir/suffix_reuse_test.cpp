@@ -8,15 +8,10 @@
 #include "gpu/gpu_context.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"
+#include "support/test_scenes.h"
 
 namespace strata::test {
 namespace {
-
-uint32_t instance_named(const scene::Scene& s, const std::string& name) {
-  for (uint32_t i = 0; i < s.instances.size(); ++i)
-    if (s.instances[i].name == name) return i;
-  throw std::runtime_error("no instance " + name);
-}
 
 // Cornell seen from near the back-left corner: neither box is in view; the short box changes
 // every frame (it moves, or switches between two LoD levels of the same mesh).
@@ -85,12 +80,7 @@ TEST_P(SuffixReuse, ALodSwitchElsewhereRefusesOnlyPathsThatReconnectOnIt) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, SuffixReuse, ::testing::Values("restir-gather", "restir-splat"),
-                         [](const ::testing::TestParamInfo<std::string>& p) {
-                           std::string n = p.param;
-                           for (char& c : n)
-                             if (c == '-') c = '_';
-                           return n;
-                         });
+                         [](const ::testing::TestParamInfo<std::string>& p) { return method_test_name(p.param); });
 
 }  // namespace
 }  // namespace strata::test

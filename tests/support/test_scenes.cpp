@@ -1,3 +1,5 @@
+#include <stdexcept>
+
 #include "support/test_scenes.h"
 
 namespace strata::test {
@@ -51,6 +53,19 @@ scene::Scene furnace_box(float albedo, float emission, float h) {
   s.camera.position = glm::vec3(0.0f);
   s.camera.yfov = 1.2f;
   return s;
+}
+
+uint32_t instance_named(const scene::Scene& s, const std::string& name) {
+  for (uint32_t i = 0; i < s.instances.size(); ++i)
+    if (s.instances[i].name == name) return i;
+  throw std::runtime_error("no instance " + name);
+}
+
+std::string method_test_name(const std::string& method) {
+  std::string n = method;
+  for (char& c : n)
+    if (c == '-') c = '_';
+  return n;
 }
 
 }  // namespace strata::test

@@ -1,5 +1,7 @@
 #pragma once
 // Small analytic scenes built in code for tests.
+#include <string>
+
 #include "scene/scene.h"
 
 namespace strata::test {
@@ -8,6 +10,12 @@ namespace strata::test {
 // `albedo` (no specular lobe), each emitting `emission` from its inward face. The camera sits at the
 // centre looking down -Z. Radiance everywhere is emission / (1 - albedo) (white furnace).
 scene::Scene furnace_box(float albedo, float emission, float half_size = 1.0f);
+
+// The index of the instance called `name` (throws std::runtime_error when there is none).
+uint32_t instance_named(const scene::Scene& s, const std::string& name);
+
+// A method name as a gtest parameter name ("restir-gather" -> "restir_gather").
+std::string method_test_name(const std::string& method);
 
 // One quad of size 2h x 2h in the plane z = z0, facing +Z, with one material.
 scene::Mesh quad_mesh(float half, float z0, uint32_t material);
