@@ -21,8 +21,6 @@ CONST_DEF float SHIFT_MAX_JACOBIAN = 1e4f;
 // similarity test of Bitterli et al. 2020 (ReSTIR DI, section 6.1), taken by Lin et al. 2022.
 CONST_DEF float SPATIAL_MIN_NORMAL_COS = 0.906f;  // cos 25 degrees
 CONST_DEF float SPATIAL_MAX_DEPTH_RELATIVE = 0.1f;
-// Default confidence cap c_cap (docs/ARCHITECTURE.md, Methods).
-CONST_DEF float CONFIDENCE_CAP_DEFAULT = 20.0f;
 
 STRATA_NAMESPACE_END
 #endif
