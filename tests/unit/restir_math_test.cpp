@@ -65,7 +65,7 @@ TEST(RestirGris, SelectionFrequenciesFollowTheWeights) {
 TEST(RestirGris, ConfidenceCapAndPHatFrom) {
   EXPECT_FLOAT_EQ(confidence_capped(7.0f, 20.0f), 7.0f);
   EXPECT_FLOAT_EQ(confidence_capped(27.0f, 20.0f), 20.0f);
-  EXPECT_FLOAT_EQ(confidence_capped(27.0f, CONFIDENCE_CAP_DEFAULT), 20.0f);
+  EXPECT_FLOAT_EQ(confidence_capped(27.0f, 4.0f), 4.0f);
   EXPECT_FLOAT_EQ(p_hat_from(3.0f, 0.5f), 1.5f);  // RS-main Eq. 7
   EXPECT_EQ(p_hat_from(3.0f, std::numeric_limits<float>::infinity()), 0.0f);
 }
