@@ -17,7 +17,7 @@ enum class StageKind {
   temporal_gather,  // the previous reservoir at the backprojected pixel (Lin 2022 section 7)
   temporal_splat,   // previous reservoirs splatted forward (RS-main 4.1), four passes
   spatial,          // neighbours in a disk (Lin 2022 section 7)
-  shade,            // f(Y) W into the image
+  shade,            // the last resampling's estimate into the image
 };
 
 const char* stage_name(StageKind kind);

@@ -37,7 +37,7 @@ Rng g_select_rng;
 // Streams one candidate: sample y with f(y) and its resampling weight.
 void offer(PathSample y, vec3 f, float w) {
   float p_hat = luminance(f);
-  if (gris_stream(g_state, w, p_hat, 0.0, 0u, rng_next_float(g_select_rng))) {
+  if (gris_stream_path(g_state, w, p_hat, f, 0.0, 0u, rng_next_float(g_select_rng))) {
     g_selected.y = y;
     g_selected_f = f;
   }
@@ -240,12 +240,14 @@ void main() {
   r.p_hat = g_state.selected_p_hat;
   r.confidence = 1.0;
   vec3 f = g_selected_f;
+  vec3 estimate = g_state.estimate;  // the path's contributions summed, as pt's estimate
   if (!(r.ucw > 0.0)) {
     r = reservoir_empty();
     r.confidence = 1.0;
     f = vec3(0.0);
+    estimate = vec3(0.0);
   }
-  store_output(domain, r, f);
+  store_output(domain, r, f, estimate);
   b_contribution[primary_emission_index(pixel)] = vec4(g_primary_emission, 0.0);
   if (g_state.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], g_state.rejected);
   atomicAdd(b_counters[COUNTER_RAYS_INITIAL], g_rays);

@@ -179,7 +179,7 @@ void main() {
         m = pairwise ? mis_pairwise_neighbor(rj.confidence, from_j, c_c, p_here, k, c_total)
                      : (denom > 0.0 ? rj.confidence * from_j / denom : 0.0);
       }
-      if (gris_stream(st, m * p_here * rj.ucw * jac, p_here, rj.confidence, j + 1u, rng_next_float(rng))) {
+      if (gris_stream_path(st, m * p_here * rj.ucw * jac, p_here, fj, rj.confidence, j + 1u, rng_next_float(rng))) {
         selected = rj;
         selected.y = yj_here;
         f_selected = fj;
@@ -189,7 +189,7 @@ void main() {
   }
   if (!pairwise) m_c = balance_c > 0.0 ? c_c * centre.p_hat / balance_c : 0.0;
   if (count == 0u) m_c = 1.0;
-  if (gris_stream(st, m_c * centre.p_hat * centre.ucw, centre.p_hat, c_c, 0u, rng_next_float(rng))) {
+  if (gris_stream_path(st, m_c * centre.p_hat * centre.ucw, centre.p_hat, f_centre, c_c, 0u, rng_next_float(rng))) {
     selected = centre;
     f_selected = f_centre;
     took_neighbour = false;
@@ -207,6 +207,6 @@ void main() {
     f = vec3(0.0);
   }
   if (st.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], st.rejected);
-  store_output(index, out_r, f);
+  store_output(index, out_r, f, st.estimate);
   atomicAdd(b_counters[COUNTER_RAYS_SPATIAL], g_rays);
 }

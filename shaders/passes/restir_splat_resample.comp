@@ -174,10 +174,10 @@ void main() {
       if (jac > 0.0) c_r_b = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel));
       // The canonical sample (RS-main Eq. 12-13; RS-supp Eq. 21) and the backup (RS-supp Eq. 22).
       float m_star = mis_balance_terms(c_star * canonical.p_hat, c_b * from_b_star, c_r * from_r);
-      gris_stream(st, m_star * canonical.p_hat * canonical.ucw, canonical.p_hat, c_star, 0u, rng_next_float(rng));
+      gris_stream_path(st, m_star * canonical.p_hat * canonical.ucw, canonical.p_hat, f_canonical, c_star, 0u, rng_next_float(rng));
       float p_yb = j_b > 0.0 ? luminance(yb.f) : 0.0;
       float m_b = j_b > 0.0 ? mis_balance_terms(c_b * xb.p_hat / j_b, c_star * p_yb, c_r_b * from_r_b) : 0.0;
-      if (gris_stream(st, m_b * p_yb * xb.ucw * j_b, p_yb, 0.0, 1u, rng_next_float(rng))) {
+      if (gris_stream_path(st, m_b * p_yb * xb.ucw * j_b, p_yb, yb.f, 0.0, 1u, rng_next_float(rng))) {
         out_r = xb;
         out_r.y = shifted_sample(xb.y, yb);
         f = yb.f;
@@ -188,7 +188,7 @@ void main() {
       float jacobian = rec.f_jacobian.w;
       float p_y = luminance(f_y);
       float m_s = mis_balance_terms((1.0 - alpha) * y_s.confidence * y_s.p_hat / jacobian, c_star * p_y, c_b * from);
-      if (gris_stream(st, m_s * p_y * y_s.ucw * jacobian, p_y, 0.0, s + 2u, rng_next_float(rng))) {
+      if (gris_stream_path(st, m_s * p_y * y_s.ucw * jacobian, p_y, f_y, 0.0, s + 2u, rng_next_float(rng))) {
         out_r = y_s;
         f = f_y;
       }
@@ -211,5 +211,5 @@ void main() {
     f = vec3(0.0);
   }
   if (st.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], st.rejected);
-  store_output(index, out_r, f);
+  store_output(index, out_r, f, st.estimate);
 }

@@ -94,7 +94,7 @@ void main() {
   if (!have_history || !(history.confidence > 0.0)) {
     atomicAdd(b_counters[COUNTER_TEMPORAL_NO_HISTORY], 1u);
     atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], g_rays);
-    return;  // the canonical reservoir stays in place
+    return;  // the canonical reservoir and its estimate stay in place
   }
   bool moved = (u_frame.history_flags & HISTORY_SCENE_MOVED) != 0u;
   float c_c = canonical.confidence;
@@ -145,8 +145,8 @@ void main() {
   }
   Rng rng = rng_init(pixel_index(pixel), 0x7E3A0u, u_frame.frame_index, u_frame.seed);
   GrisState s = gris_begin();
-  gris_stream(s, w_c, canonical.p_hat, c_c, 0u, rng_next_float(rng));
-  gris_stream(s, w_h, p_fw, c_h, 1u, rng_next_float(rng));
+  gris_stream_path(s, w_c, canonical.p_hat, f_canonical, c_c, 0u, rng_next_float(rng));
+  gris_stream_path(s, w_h, p_fw, fw.f, c_h, 1u, rng_next_float(rng));
   Reservoir out_r = canonical;
   vec3 f = f_canonical;
   if (s.selected == 1u) {
@@ -164,6 +164,6 @@ void main() {
     f = vec3(0.0);
   }
   if (s.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], s.rejected);
-  store_output(index, out_r, f);
+  store_output(index, out_r, f, s.estimate);
   atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], g_rays);
 }

@@ -16,5 +16,12 @@ INLINE uint domain_index(uvec2 pixel, uint layer, uint width, uint height) {
 // The pixel of a layer-0 domain index (the inverse of domain_index for layer 0).
 INLINE uvec2 domain_pixel(uint index, uint width) { return uvec2(index % width, index / width); }
 
+// The contribution buffer, per frame (3 sections; `domains` of them per layer-0 pixel so far):
+// f(Y) of each domain's reservoir, what each pixel's camera rays see directly, and each domain's
+// estimate sum_i w_i f(Y_i) / p-hat(Y_i) over the candidates of the last pass that resampled it
+// (restir/gris.h, gris_stream_path), which the shade pass adds to the image.
+INLINE uint contribution_emission_index(uint pixel, uint domains) { return domains + pixel; }
+INLINE uint contribution_estimate_index(uint domain, uint domains, uint pixels) { return domains + pixels + domain; }
+
 STRATA_NAMESPACE_END
 #endif

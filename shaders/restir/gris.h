@@ -21,6 +21,7 @@ struct GrisState {
   float confidence;       // sum of the inputs' confidence weights
   uint selected;          // caller-defined index of the selected candidate (0xFFFFFFFF: none)
   uint rejected;          // candidates whose weight was not finite (counted in the statistics)
+  vec3 estimate;          // sum_i w_i f(Y_i) / p-hat(Y_i): see gris_stream_path
 };
 
 CONST_DEF uint GRIS_NONE = 0xFFFFFFFFu;
@@ -32,6 +33,7 @@ INLINE GrisState gris_begin() {
   s.confidence = 0.0f;
   s.selected = GRIS_NONE;
   s.rejected = 0u;
+  s.estimate = vec3(0.0f);
   return s;
 }
 
@@ -56,6 +58,19 @@ INLINE bool gris_stream(INOUT(GrisState) s, float w, float p_hat, float confiden
     return true;
   }
   return false;
+}
+
+// gris_stream for a candidate path whose contribution f(Y_i) is known; also accumulates the
+// pixel estimate over all candidates. With W_Y from Eq. 5 and P(select i) = w_i / sum_j w_j:
+//   E[f(Y) W_Y | Y_1..Y_M] = sum_i (w_i / sum_j w_j) f(Y_i) (sum_j w_j / p-hat(Y_i)) = sum_i w_i f(Y_i) / p-hat(Y_i),
+// so shading with the sum instead of f(Y) W_Y has the same expectation (unbiased wherever the
+// selected sample's estimate is) and never more variance: it conditions out the random selection,
+// including the choice of colour under a luminance target (Rao-Blackwellisation of RIS). The
+// reservoir still keeps the selected Y for the next reuse; only the pixel is shaded with the sum.
+INLINE bool gris_stream_path(INOUT(GrisState) s, float w, float p_hat, vec3 f, float confidence, uint index, float u) {
+  bool selected = gris_stream(s, w, p_hat, confidence, index, u);
+  if (gris_valid(w) && w > 0.0f && p_hat > 0.0f && !isinf(p_hat)) s.estimate += f * gris_sanitize(w / p_hat);
+  return selected;
 }
 
 // RS-main Eq. 5: W_Y = (1 / p-hat(Y)) sum_i w_i. Zero when nothing was selected or p-hat is 0.

@@ -99,6 +99,31 @@ PathSample shifted_sample(PathSample y, ShiftResult s) {
   return y;
 }
 
+// Whether y_{k-1} = v sees x_k (at `dist` along d; an escaped end: the environment along d).
+// A visibility ray aimed at a point on a surface can hit that same surface just short of it: the
+// traversal's intersection and the resolved point differ by rounding (on lavapipe by 1e-4 of the
+// distance and more on rotated instances, where 0.5-1% of the temporal shifts of a static
+// Cornell box failed so, each a path that could never be reused and whose history went dark). So a
+// blocked ray is traced once more for its closest hit, and counts as visible when that hit is x_k's
+// own mesh part within RECONNECT_SELF_TOLERANCE of the distance (restir/thresholds.h). Both
+// queries go through the single call site of trace_query_in.
+bool reconnection_visible(bool prev, Vertex v, vec3 d, float dist, bool to_environment, SurfacePoint xk, INOUT(uint) rays) {
+  for (uint attempt = 0u; attempt < 2u; ++attempt) {
+    bool any_hit = attempt == 0u;
+    float t_max = to_environment ? 1e30 : (any_hit ? dist * (1.0 - SHADOW_RAY_SHORTEN) : dist * (1.0 + RECONNECT_SELF_TOLERANCE));
+    RayHit h;
+    rays++;
+    bool hit = trace_query_in(prev, spawn(v), d, t_max, any_hit, h);
+    if (any_hit) {
+      if (!hit) return true;
+      if (to_environment) return false;
+    } else {
+      return hit && h.instance == xk.instance && h.geometry == xk.geometry && h.t >= dist * (1.0 - RECONNECT_SELF_TOLERANCE);
+    }
+  }
+  return false;
+}
+
 // Evaluates the sample y, shifted into the domain of `pixel` in the current (prev = false) or the
 // previous frame. suffix_changed: the scene moved between y's frame and the domain's frame.
 ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed) {
@@ -226,9 +251,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed)
       tail = xk.emission * technique_weight(nee, pl_k, scatter_pdf(v, d));
     }
     if (!replay && !(luminance(tail) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
-    r.rays++;
-    float t_max = to_environment ? 1e30 : dist * (1.0 - SHADOW_RAY_SHORTEN);
-    if (!trace_visible_in(prev, spawn(v), d, t_max)) return shift_fail(r, SHIFT_FAIL_OCCLUDED);
+    if (!reconnection_visible(prev, v, d, dist, to_environment, y.xk, r.rays)) return shift_fail(r, SHIFT_FAIL_OCCLUDED);
 #ifdef STRATA_HISTORY
     if (replay) {
       // The suffix in this frame (restir/suffix_replay.glsl), after the cheaper tests passed.

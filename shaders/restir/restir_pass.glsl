@@ -25,10 +25,12 @@ uint domain_of(uvec2 pixel, uint layer) { return domain_index(pixel, layer, u_fr
 uint prev_domain_of(uvec2 pixel, uint layer) { return domain_index(pixel, layer, u_frame.prev_width, u_frame.prev_height); }
 uint domain_count() { return u_frame.width * u_frame.height; }  // one layer
 
-// The contribution buffer holds f(Y) of the reservoir of every domain, then per pixel its estimate
-// of what its camera rays see directly, x_1's emission or the environment (written by the initial
-// pass, added by the shade pass). Paths of one segment are never resampled (restir_initial.comp).
-uint primary_emission_index(uvec2 pixel) { return domain_count() + pixel_index(pixel); }
+// The contribution buffer (restir/domain.h) holds f(Y) of the reservoir of every domain, then per
+// pixel its estimate of what its camera rays see directly, x_1's emission or the environment
+// (written by the initial pass, added by the shade pass; paths of one segment are never resampled:
+// restir_initial.comp), then every domain's estimate from its last resampling (store_output).
+uint primary_emission_index(uvec2 pixel) { return contribution_emission_index(pixel_index(pixel), domain_count()); }
+uint estimate_index(uint domain) { return contribution_estimate_index(domain, domain_count(), u_frame.width * u_frame.height); }
 
 Reservoir reservoir_empty() {
   Reservoir r;
@@ -55,19 +57,23 @@ Reservoir reservoir_empty() {
 
 bool reservoir_valid(Reservoir r) { return (r.y.flags & SAMPLE_VALID) != 0u && r.ucw > 0.0 && r.p_hat > 0.0; }
 
-// Writes the pass's output reservoir and f(Y) of domain `index`; a non-finite weight empties it
+// Writes the pass's output reservoir, f(Y) and the domain's estimate over the pass's candidates
+// (GrisState.estimate) of domain `index`; a non-finite weight or estimate empties it
 // (docs/ARCHITECTURE.md, "Robustness") and is counted.
-void store_output(uint index, Reservoir r, vec3 f) {
-  bool finite = !(isnan(r.ucw) || isinf(r.ucw) || isnan(r.p_hat) || isinf(r.p_hat) || any(isnan(f)) || any(isinf(f)));
+void store_output(uint index, Reservoir r, vec3 f, vec3 estimate) {
+  bool finite = !(isnan(r.ucw) || isinf(r.ucw) || isnan(r.p_hat) || isinf(r.p_hat) || any(isnan(f)) || any(isinf(f)) ||
+                  any(isnan(estimate)) || any(isinf(estimate)));
   if (!finite) {
     atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], 1u);
     float c = r.confidence;
     r = reservoir_empty();
     r.confidence = isnan(c) || isinf(c) ? 0.0 : c;
     f = vec3(0.0);
+    estimate = vec3(0.0);
   }
   b_out[index] = pack_reservoir(r);
   b_contribution[index] = vec4(f, 0.0);
+  b_contribution[estimate_index(index)] = vec4(estimate, 0.0);
 }
 
 #endif

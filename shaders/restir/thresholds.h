@@ -11,6 +11,11 @@ CONST_DEF float RECONNECT_MIN_ALPHA = 0.2f;
 // Reconnection edges shorter than this fraction of the distance to the camera are refused: the
 // 1/d^2 factor of the Jacobian is unstable for near-coincident vertices.
 CONST_DEF float RECONNECT_MIN_EDGE_RELATIVE = 1e-2f;
+// A reconnection's visibility ray that is blocked by x_k's own mesh part within this fraction of
+// the edge's length counts as unblocked (restir/path_space.glsl, reconnection_visible): traversal
+// rounding, not an occluder. The bias it allows (an occluder of the same mesh part closer than 1% of
+// the edge to x_k) is far below the failures it removes.
+CONST_DEF float RECONNECT_SELF_TOLERANCE = 1e-2f;
 // |cos| below this at a reconnection or primary vertex is grazing: the Jacobian (RS-main Eq. 15,
 // Lin 2022 reconnection Jacobian) is singular there, so the shift fails.
 CONST_DEF float SHIFT_MIN_COS = 1e-3f;

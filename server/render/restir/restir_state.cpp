@@ -53,8 +53,9 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
   constants.upload(&c, sizeof c);
   work = device_storage(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (work)");
   history = PingPong(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (history)");
-  // Per domain: f(Y) of the reservoir there, then (second half) what the camera rays see directly.
-  contribution = device_storage(ctx, 2 * sizeof(glm::vec4) * domains, "contribution");
+  // Per domain f(Y) of the reservoir there, per pixel what the camera rays see directly, per
+  // domain the estimate the shade pass adds (restir/domain.h).
+  contribution = device_storage(ctx, sizeof(glm::vec4) * (2 * domains + uint64_t(width) * height), "contribution");
   // The temporal stages and the spatial stage's neighbour filter read the visibility buffer; without
   // either there is no primary stage.
   if (settings.restir.temporal || settings.restir.spatial)

@@ -1,5 +1,6 @@
-// Stage `shade`: each pixel's estimate f(Y) W of its final reservoir plus what its camera rays see
-// directly, added to the image (shaders/passes/restir_shade.comp).
+// Stage `shade`: each pixel's estimate from its last resampling (the expectation of f(Y) W over
+// that pass's candidates, restir/gris.h) plus what its camera rays see directly, added to the
+// image (shaders/passes/restir_shade.comp).
 #include "include/bindings.h"
 #include "render/restir/restir_state.h"
 #include "render/restir/stages.h"
@@ -13,7 +14,6 @@ class ShadeStage : public Stage {
       : state_(state),
         pass_(state.shared.ctx, nullptr, {}, "restir_shade",
               {uniform(BINDING_FRAME, state.shared.constants), storage(BINDING_COUNTERS, Access::read_write, state.shared.counters),
-               history_current(BINDING_RESERVOIRS_IN, Access::read, state.history),
                storage(BINDING_CONTRIBUTION, Access::read, state.contribution),
                storage(BINDING_ACCUM, Access::read_write, state.shared.accum)}) {}
   StageKind kind() const override { return StageKind::shade; }
@@ -21,7 +21,7 @@ class ShadeStage : public Stage {
   void record(const StageFrame& f) override {
     timed(f, "shade", [&] { pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height); });
   }
-  PassDecision decision() const override { return {"shade", true, "f(Y) W"}; }
+  PassDecision decision() const override { return {"shade", true, "sum of w f / p-hat over the last resampling's candidates"}; }
 
  private:
   const RestirState& state_;

@@ -20,7 +20,7 @@ std::unique_ptr<Stage> make_temporal_gather_stage(const RestirState& state);
 std::unique_ptr<Stage> make_temporal_splat_stage(const RestirState& state);
 // spatial: neighbours in a disk (restir_spatial); work -> history.current.
 std::unique_ptr<Stage> make_spatial_stage(const RestirState& state);
-// shade: f(Y) W and the directly seen emission into the image (restir_shade); history.current -> accum.
+// shade: the last resampling's estimate and the directly seen emission into the image (restir_shade); contribution -> accum.
 std::unique_ptr<Stage> make_shade_stage(const RestirState& state);
 
 // What a temporal stage did with path suffixes this frame (restir/suffix_replay.glsl), for its decision.
