@@ -43,7 +43,16 @@ struct Case {
     return s.frame_state(f);
   };
   bool expect_bias = false;  // a biased variant the test must detect (the cases' power)
+  // A change to the built-in scene, and its name (part of the reference's key).
+  std::string variant;
+  std::function<void(scene::Scene&)> edit = [](scene::Scene&) {};
 };
+
+scene::Scene case_scene(const Case& c) {
+  scene::Scene s = scene::builtin_scene(c.scene);
+  c.edit(s);
+  return s;
+}
 
 uint32_t scored_frames(const Case& c) {
   uint32_t n = 0;
@@ -102,7 +111,7 @@ RunningImage render_reference(const scene::Scene& s, const Case& c, uint32_t run
 // agree on it (most cornell cases, the carousel cases, each motion) share one render: the
 // reference's seeds are fixed, so a shared reference is the very image each would render.
 struct ReferenceKey {
-  std::string scene;
+  std::string scene;  // name and variant
   uint32_t max_depth;
   std::vector<std::pair<uint32_t, scene::FrameState>> scored;
   bool operator==(const ReferenceKey&) const = default;
@@ -110,7 +119,7 @@ struct ReferenceKey {
 
 const RunningImage& reference_of(const scene::Scene& s, const Case& c, uint32_t runs, uint32_t spp) {
   static std::deque<std::pair<ReferenceKey, RunningImage>> cache;  // stable references
-  ReferenceKey key{c.scene, c.max_depth, {}};
+  ReferenceKey key{c.scene + "/" + c.variant, c.max_depth, {}};
   for (uint32_t f = 1; f < c.frames; ++f)
     if (c.scored(f)) key.scored.emplace_back(f, c.state(s, f));
   for (const auto& [k, image] : cache)
@@ -123,7 +132,7 @@ class RestirUnbiased : public GpuTest, public ::testing::WithParamInterface<Case
 
 TEST_P(RestirUnbiased, MatchesPathTracedReference) {
   const Case& c = GetParam();
-  scene::Scene s = scene::builtin_scene(c.scene);
+  scene::Scene s = case_scene(c);
   const RunningImage& reference = reference_of(s, c, 32, 512);
   RunningImage method(k_size, k_size);
   for (uint32_t r = 0; r < c.runs; ++r) method.add(sequence_mean(s, c, 1000 + r));
@@ -218,6 +227,22 @@ scene::FrameState moving_occluder(const scene::Scene& s, uint32_t f) { return ju
 // The ceiling light moves 0.8 m towards the red wall and back: every NEE end moves with it.
 scene::FrameState moving_emitter(const scene::Scene& s, uint32_t f) { return jumping(s, f, "light", {-0.7f, 0.0f, 0.4f}); }
 
+// The tall box made of rough metal (GGX alpha 0.25, rough enough to reconnect on): a replayed
+// suffix that bounces off it samples its direction there from the same random numbers but from
+// another incoming direction once the box has moved, so the density of the replayed direction
+// changes and the replay Jacobian's suffix_density(x) / suffix_density(y) matters.
+void glossy_tall_box(scene::Scene& s) {
+  scene::Material m;
+  m.name = "glossy";
+  m.base_color = glm::vec3(0.9f, 0.8f, 0.6f);
+  m.metallic = 1.0f;
+  m.roughness = 0.5f;
+  s.materials.push_back(m);
+  for (scene::Mesh& mesh : s.meshes)
+    if (mesh.name == "tall_box")
+      for (scene::Primitive& p : mesh.primitives) p.material = uint32_t(s.materials.size() - 1);
+}
+
 // A camera close to the back-left corner that sees neither box; the tall box moves in front of the
 // red wall it sees, so the box changes these pixels only through paths that bounce off a seen surface.
 scene::FrameState suffix_only_motion(const scene::Scene& s, uint32_t f) {
@@ -302,6 +327,13 @@ std::vector<Case> cases() {
                    o.suffix = "replay";
                  }, .scored = [](uint32_t f) { return f % 2 == 1; }, .state = state});
   }
+  v.push_back({.name = "replay_glossy_moving_occluder", .scene = "cornell", .frames = 6, .runs = 64,
+               .options = [](render::RestirOptions& o) {
+                 o.spatial = false;
+                 o.suffix = "replay";
+               },
+               .scored = [](uint32_t f) { return f % 2 == 1; }, .state = moving_occluder, .variant = "glossy_tall_box",
+               .edit = glossy_tall_box});
   // The cases are strong enough to see the stored suffix's bias (the references' `cached`).
   v.push_back({.name = "cached_moving_emitter_is_biased", .scene = "cornell", .frames = 6, .runs = 64,
                .options = [](render::RestirOptions& o) {
