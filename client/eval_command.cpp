@@ -189,7 +189,7 @@ void print_summary(const report::Report& rep) {
   for (const auto& et : rep.equal_time)
     std::cout << et.scene << "  equal time: " << et.method << " (" << et.method_median_ms << " ms) vs pt at " << et.pt_spp
               << " spp (" << et.pt_median_ms << " ms): error ratio relmse " << et.ratio.relmse << "  mape " << et.ratio.mape
-              << "  flip " << et.ratio.flip << "\n";
+              << "  flip " << et.ratio.flip << "; relmse ratio at equal ms " << et.relmse_ratio_at_equal_ms << "\n";
 }
 
 int run_eval(EvalArgs& a, bool frames_given) {

@@ -89,6 +89,8 @@ report::EqualTime equal_time_entry(const report::Run& method_run, const report::
   e.ratio.relmse = ratio(e.method_mean.relmse, e.pt_mean.relmse);
   e.ratio.mape = ratio(e.method_mean.mape, e.pt_mean.mape);
   e.ratio.flip = ratio(e.method_mean.flip, e.pt_mean.flip);
+  const bool timed = e.method_median_ms > 0.0 && e.pt_median_ms > 0.0 && std::isfinite(e.method_median_ms / e.pt_median_ms);
+  e.relmse_ratio_at_equal_ms = timed ? e.ratio.relmse * e.method_median_ms / e.pt_median_ms : e.ratio.relmse;
   return e;
 }
 

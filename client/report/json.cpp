@@ -43,7 +43,8 @@ nlohmann::json equal_time_json(const EqualTime& et) {
           {"pt_spp", et.pt_spp},
           {"method_mean", errors_json(et.method_mean)},
           {"pt_mean", errors_json(et.pt_mean)},
-          {"ratio", errors_json(et.ratio)}};
+          {"ratio", errors_json(et.ratio)},
+          {"relmse_ratio_at_equal_ms", et.relmse_ratio_at_equal_ms}};
 }
 
 nlohmann::json insets_json(const Insets& insets) {

@@ -44,6 +44,10 @@ struct EqualTime {
   uint32_t pt_spp = 1;
   Errors method_mean, pt_mean;               // mean over frames (whole image)
   Errors ratio;                              // method / pt: < 1 means the method wins
+  // The RelMSE ratio with pt's error moved to exactly the method's time (RelMSE x time is constant
+  // for pt, whose spp are independent): ratio.relmse x method ms / pt ms. The whole spp that fit in
+  // the method's time make `ratio` jump with timing noise; this one does not.
+  double relmse_ratio_at_equal_ms = 0.0;
 };
 
 // PNG images (8-bit sRGB, already encoded) shown side by side for one frame of one scene:

@@ -97,6 +97,8 @@ void check_results(const fs::path& out) {
   EXPECT_EQ(et["method"], "restir-gather");
   EXPECT_GE(et["pt_spp"].get<int>(), 1);
   for (const char* m : {"relmse", "mape", "flip"}) EXPECT_GT(et["ratio"][m].get<double>(), 0.0) << m;
+  EXPECT_NEAR(et["relmse_ratio_at_equal_ms"].get<double>(),
+              et["ratio"]["relmse"].get<double>() * et["method_median_ms"].get<double>() / et["pt_median_ms"].get<double>(), 1e-9);
   ASSERT_EQ(doc["insets"].size(), 1u);
   std::set<std::string> insets;
   for (const auto& name : doc["insets"][0]["images"]) insets.insert(name.get<std::string>());
