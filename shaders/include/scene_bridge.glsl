@@ -122,32 +122,28 @@ bool trace_closest_in(bool prev, vec3 origin, vec3 dir, float t_max, out RayHit 
   return committed_hit(rq, hit);
 }
 
+#else
+GpuInstance instance_in(bool prev, uint i) { return b_instances[i]; }
+bool trace_closest_in(bool prev, vec3 origin, vec3 dir, float t_max, out RayHit hit) {
+  return trace_closest(origin, dir, t_max, hit);
+}
+#endif
+
 // Either kind of query in either frame through one traversal: the closest hit, or with `any_hit`
 // whether anything blocks the segment (then `hit` is some hit on it). A loop that needs both
 // kinds traces at a single call site (lavapipe inlines the traversal of each rayQueryProceedEXT).
 bool trace_query_in(bool prev, vec3 origin, vec3 dir, float t_max, bool any_hit, out RayHit hit) {
   uint flags = gl_RayFlagsOpaqueEXT | (any_hit ? gl_RayFlagsTerminateOnFirstHitEXT : 0u);
   rayQueryEXT rq;
+#ifdef STRATA_HISTORY
   if (prev) rayQueryInitializeEXT(rq, u_tlas_prev, flags, 0xFF, origin, 0.0, dir, t_max);
-  else rayQueryInitializeEXT(rq, u_tlas, flags, 0xFF, origin, 0.0, dir, t_max);
-  while (rayQueryProceedEXT(rq)) {
-  }
-  return committed_hit(rq, hit);
-}
-#else
-GpuInstance instance_in(bool prev, uint i) { return b_instances[i]; }
-bool trace_closest_in(bool prev, vec3 origin, vec3 dir, float t_max, out RayHit hit) {
-  return trace_closest(origin, dir, t_max, hit);
-}
-bool trace_query_in(bool prev, vec3 origin, vec3 dir, float t_max, bool any_hit, out RayHit hit) {
-  uint flags = gl_RayFlagsOpaqueEXT | (any_hit ? gl_RayFlagsTerminateOnFirstHitEXT : 0u);
-  rayQueryEXT rq;
-  rayQueryInitializeEXT(rq, u_tlas, flags, 0xFF, origin, 0.0, dir, t_max);
-  while (rayQueryProceedEXT(rq)) {
-  }
-  return committed_hit(rq, hit);
-}
+  else
 #endif
+    rayQueryInitializeEXT(rq, u_tlas, flags, 0xFF, origin, 0.0, dir, t_max);
+  while (rayQueryProceedEXT(rq)) {
+  }
+  return committed_hit(rq, hit);
+}
 
 SurfaceHit load_hit_in(bool prev, RayHit h) { return load_hit_with(instance_in(prev, h.instance), h); }
 

@@ -240,14 +240,12 @@ void main() {
   r.p_hat = g_state.selected_p_hat;
   r.confidence = 1.0;
   vec3 f = g_selected_f;
-  vec3 estimate = g_state.estimate;  // the path's contributions summed, as pt's estimate
   if (!(r.ucw > 0.0)) {
     r = reservoir_empty();
     r.confidence = 1.0;
     f = vec3(0.0);
-    estimate = vec3(0.0);
   }
-  store_output(domain, r, f, estimate);
+  store_output(domain, r, f, g_state.estimate);  // the path's contributions summed, as pt's estimate
   b_contribution[primary_emission_index(pixel)] = vec4(g_primary_emission, 0.0);
   if (g_state.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], g_state.rejected);
   atomicAdd(b_counters[COUNTER_RAYS_INITIAL], g_rays);

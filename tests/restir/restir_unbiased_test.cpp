@@ -107,19 +107,19 @@ RunningImage render_reference(const scene::Scene& s, const Case& c, uint32_t run
   return out;
 }
 
-// What a reference depends on: the scene, the depth and the scored frames' states. Cases that
+// What a reference depends on: the scene, the depth, its size and the scored frames' states. Cases that
 // agree on it (most cornell cases, the carousel cases, each motion) share one render: the
 // reference's seeds are fixed, so a shared reference is the very image each would render.
 struct ReferenceKey {
   std::string scene;  // name and variant
-  uint32_t max_depth;
+  uint32_t max_depth, runs, spp;
   std::vector<std::pair<uint32_t, scene::FrameState>> scored;
   bool operator==(const ReferenceKey&) const = default;
 };
 
 const RunningImage& reference_of(const scene::Scene& s, const Case& c, uint32_t runs, uint32_t spp) {
   static std::deque<std::pair<ReferenceKey, RunningImage>> cache;  // stable references
-  ReferenceKey key{c.scene + "/" + c.variant, c.max_depth, {}};
+  ReferenceKey key{c.scene + "/" + c.variant, c.max_depth, runs, spp, {}};
   for (uint32_t f = 1; f < c.frames; ++f)
     if (c.scored(f)) key.scored.emplace_back(f, c.state(s, f));
   for (const auto& [k, image] : cache)
