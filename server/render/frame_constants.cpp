@@ -57,6 +57,7 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   c.seed = setup.seed;
   c.samples_per_pixel = setup.spp;
   c.max_depth = setup.max_depth;
+  c.primary_mode = setup.fixed_primary ? gpu::PRIMARY_DOMAIN : gpu::PRIMARY_CENTRE;
   c.time_partitions = time_partitions(frame, setup.splats_per_frame);
   c.emitter_count = scene.emitter_count();
   c.total_emitter_power = float(scene.total_emitter_power());

@@ -16,6 +16,7 @@ struct FrameSetup {
   uint32_t max_depth = 16;
   bool env_nee = false;  // the environment is sampled by next-event estimation
   uint32_t splats_per_frame = 1;  // restir-splat*: K over an open shutter
+  bool fixed_primary = false;     // PRIMARY_DOMAIN: the primary stage traces each pixel's camera sample
 };
 
 // K time partitions of a frame (RS-main Eq. 19): splats_per_frame when the shutter is open (the

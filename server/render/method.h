@@ -48,6 +48,8 @@ class Method {
   virtual std::vector<PassDecision> decisions() const = 0;
   // Device memory the method itself holds, by buffer group.
   virtual std::map<std::string, uint64_t> memory_bytes() const = 0;
+  // Whether its domains start at the visibility buffer's camera samples (GpuFrameConstants::primary_mode).
+  virtual bool fixed_primary() const { return false; }
   // Adds the method's own counters (frame_data.h COUNTER_*) to the frame statistics.
   virtual void collect(std::span<const uint32_t> counters, FrameStats& stats) const {
     (void)counters;

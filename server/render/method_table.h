@@ -31,6 +31,10 @@ struct MethodSpec {
   bool backup;               // splatting with the backprojected backup sample (RS-main 4.2)
   bool layers;               // pixel-layer domains (the ML paper): `layers` applies
   StageKind temporal;        // the temporal stage (reuse methods)
+  // A domain's primary vertex is fixed per frame (the visibility buffer's camera sample): shifts
+  // start there instead of tracing the sample's camera ray (docs/ARCHITECTURE.md, "Domains and
+  // their primary vertex"). Not for splatting, whose samples carry their primary hits.
+  bool fixed_primary;
   std::vector<StageKind> stages() const;  // all stages, in frame order, before options switch any off
 };
 

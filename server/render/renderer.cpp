@@ -122,7 +122,8 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
     timer_->end(cmd);
 
     FrameSetup setup{settings_.width, settings_.height, frame_index,       settings_.seed,
-                     settings_.spp,   settings_.max_depth, env_nee, settings_.restir.splats_per_frame};
+                     settings_.spp,   settings_.max_depth, env_nee, settings_.restir.splats_per_frame,
+                     method_->fixed_primary()};
     gpu::GpuFrameConstants c = make_frame_constants(frame, sc.environment, *scene_, setup);
     constants_.upload(&c, sizeof c);
 

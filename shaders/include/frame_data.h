@@ -34,7 +34,7 @@ struct GpuFrameConstants {
   uint frame_index;
   uint seed;
   uint samples_per_pixel;    // this frame's total; dispatches add GpuDispatchConstants::sample_count each
-  uint pad2;
+  uint primary_mode;         // PRIMARY_CENTRE or PRIMARY_DOMAIN: the ray of the visibility buffer (restir/primary_data.h)
   uint max_depth;            // path vertices after the camera
   uint emitter_count;
   float total_emitter_power;
@@ -57,6 +57,10 @@ CONST_DEF uint HISTORY_VALID = 1u;         // a previous frame exists (TLAS, ins
 CONST_DEF uint HISTORY_SCENE_MOVED = 2u;   // some instance changed since then (INSTANCE_CHANGED_* says which)
 CONST_DEF uint HISTORY_LIGHTS_RESELECTED = 4u;  // light selection (emitter table or environment share) differs:
                                                 // the same random numbers choose another light in each frame
+
+// primary_mode: which camera ray the primary stage traces per pixel (restir/primary_data.h).
+CONST_DEF uint PRIMARY_CENTRE = 0u;  // through the pixel centre and the lens centre, at the frame's instant
+CONST_DEF uint PRIMARY_DOMAIN = 1u;  // the pixel's camera sample of the frame: its domain's primary vertex
 
 // Push constants of a dispatch: a frame's samples may be split over several dispatches.
 struct GpuDispatchConstants {

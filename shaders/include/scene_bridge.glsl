@@ -189,6 +189,16 @@ ResolvedSurface resolve_surface(bool prev, SurfacePoint p) {
   return r;
 }
 
+// The hit of a visibility-buffer entry as its ray query reported it; false when the ray found none.
+bool primary_hit(GpuPrimaryHit p, out RayHit h) {
+  h.t = p.t;
+  h.instance = p.instance;
+  h.geometry = p.geometry;
+  h.triangle = p.triangle;
+  h.bary = p.bary;
+  return (p.flags & PRIMARY_HIT) != 0u;
+}
+
 // The surface point of a visibility-buffer entry (restir/primary_data.h).
 SurfacePoint primary_surface(GpuPrimaryHit h) {
   SurfacePoint p;

@@ -1,8 +1,12 @@
 #version 460
-// Pass `primary` (stage primary; docs/ARCHITECTURE.md): the visibility buffer. Per pixel, the ray
-// through the pixel centre and the lens centre at the frame's instant, traced once; the temporal
-// stages (gather backprojection, splatting's backup and confidence) and the disocclusion mask read
-// its hit instead of tracing the same ray again.
+// Pass `primary` (stage primary; docs/ARCHITECTURE.md): the visibility buffer. Per pixel one
+// camera ray, traced once, with its camera sample (restir/primary_data.h): with PRIMARY_CENTRE the
+// ray through the pixel centre and the lens centre at the frame's instant; with PRIMARY_DOMAIN the
+// pixel's camera sample of this frame, whose hit is the primary vertex of the pixel's domain (the
+// initial pass starts its paths there and every shift into the domain starts there, so no shift
+// traces a camera ray). The temporal stages (gather backprojection, splatting's backup and
+// confidence), the spatial neighbour filter and the disocclusion mask read its hit instead of
+// tracing the same ray again.
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
 
@@ -17,13 +21,25 @@ layout(set = 0, binding = BINDING_PRIMARY, std430) writeonly buffer Primary { Gp
 
 #include "sampling/warp.h"
 #include "include/camera.glsl"
+#include "restir/camera_sample.glsl"
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
+  uint index = pixel.y * u_frame.width + pixel.x;
+  CameraSample cs;
+  cs.jitter = vec2(0.5);
+  cs.lens = vec2(0.5);
+  cs.time = 1.0;  // the frame's instant: the shutter's close (include/shutter.h)
+  GpuCamera camera = u_frame.camera;
+  if (u_frame.primary_mode == PRIMARY_DOMAIN) {
+    // The key of the initial pass's first candidate path, so that its camera sample is this one.
+    cs = camera_sample(rng_key(index, 0u, u_frame.frame_index, u_frame.seed));
+    camera = camera_at(false, cs.time);
+  }
   vec3 origin;
   vec3 dir;
-  primary_ray(u_frame.camera, vec2(pixel), vec2(0.5), vec2(0.5), origin, dir);
+  primary_ray(camera, vec2(pixel), cs.jitter, cs.lens, origin, dir);
   RayHit h;
   GpuPrimaryHit p;
   p.t = 0.0;
@@ -33,6 +49,9 @@ void main() {
   p.bary = vec2(0.0);
   p.lod = 0u;
   p.flags = 0u;
+  p.jitter = cs.jitter;
+  p.lens = packUnorm2x16(cs.lens);
+  p.time = cs.time;
   if (trace_closest(origin, dir, 1e30, h)) {
     p.t = h.t;
     p.instance = h.instance;
@@ -42,5 +61,5 @@ void main() {
     p.lod = b_instances[h.instance].lod;
     p.flags = PRIMARY_HIT;
   }
-  b_primary[pixel.y * u_frame.width + pixel.x] = p;
+  b_primary[index] = p;
 }

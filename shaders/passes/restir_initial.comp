@@ -1,6 +1,9 @@
 #version 460
 // Pass `initial` (docs/ARCHITECTURE.md, Methods; RS-main 3.4): the canonical sample of each pixel by
-// resampled importance sampling over the sub-paths of N_init paths. Each path is the path
+// resampled importance sampling over the sub-paths of N_init paths. With PRIMARY_DOMAIN (the gather
+// methods) all of them start at the pixel's primary vertex of this frame, the visibility buffer's
+// hit (docs/ARCHITECTURE.md, "Domains and their primary vertex"); otherwise each traces its own
+// camera ray with its own camera sample. Each path is the path
 // tracer's (NEE with `light_candidates` samples per vertex, BSDF sampling, power-heuristic MIS);
 // every NEE connection and every emitter or environment hit is one candidate, with resampling
 // weight w = m_i p-hat(X) / p(X) = luminance of its MIS-weighted contribution over
@@ -26,6 +29,8 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "restir/path_space.glsl"
 #include "sampling/light_sampling.glsl"
 
+
+layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
 
 uint g_rays = 0u;
 GrisState g_state;
@@ -55,19 +60,30 @@ PathSample sample_begin(uint key, vec2 jitter, vec2 lens, float time) {
 
 // One path of the initial estimator: streams all of its candidates.
 void trace_candidates(uvec2 pixel, uint key, float n_init) {
-  vec2 jitter = vec2(rng_dim(key, DIM_JITTER), rng_dim(key, DIM_JITTER + 1u));
-  // The lens sample is stored as unorm16, so it is drawn on that grid (restir/reservoir.h).
-  vec2 lens = unpackUnorm2x16(packUnorm2x16(vec2(rng_dim(key, DIM_LENS), rng_dim(key, DIM_LENS + 1u))));
-  // Shutter time (RS-main 4.4), always part of the sample so that shifts between frames with and
-  // without motion blur stay bijections; the camera depends on it only over an open shutter.
-  float time = rng_dim(key, DIM_TIME);
+  bool domain_primary = u_frame.primary_mode == PRIMARY_DOMAIN;
+  GpuPrimaryHit ph;
+  CameraSample cs;
+  if (domain_primary) {
+    ph = b_primary[pixel_index(pixel)];
+    cs.jitter = ph.jitter;
+    cs.lens = unpackUnorm2x16(ph.lens);
+    cs.time = ph.time;
+  } else {
+    cs = camera_sample(key);
+  }
   vec3 origin;
   vec3 dir;
-  primary_ray(camera_at(false, time), vec2(pixel), jitter, lens, origin, dir);
-  PathSample y = sample_begin(key, jitter, lens, time);
+  primary_ray(camera_at(false, cs.time), vec2(pixel), cs.jitter, cs.lens, origin, dir);
+  PathSample y = sample_begin(key, cs.jitter, cs.lens, cs.time);
   RayHit h;
-  g_rays++;
-  if (!trace_closest(origin, dir, 1e30, h)) {
+  bool found;
+  if (domain_primary) {
+    found = primary_hit(ph, h);  // the domain's primary vertex: no ray
+  } else {
+    g_rays++;
+    found = trace_closest(origin, dir, 1e30, h);
+  }
+  if (!found) {
     g_primary_emission += u_frame.environment.rgb / n_init;  // one segment: not resampled
     return;
   }

@@ -149,7 +149,8 @@ void main() {
     ShiftResult res;
     res.reason = SHIFT_FAIL_ZERO;
     if (run) {
-      res = shift_path(false, vec2(domain_pixel(target, u_frame.width)), y, false);
+      uvec2 tp = domain_pixel(target, u_frame.width);
+      res = shift_path(false, vec2(tp), domain_primary(b_primary[pixel_index(tp)]), y, false);
       g_rays += res.rays;
       atomicAdd(b_counters[COUNTER_SPATIAL_SHIFTS], 1u);
       if (res.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_SPATIAL_FAIL + res.reason], 1u);
@@ -160,6 +161,9 @@ void main() {
       jac = ok ? res.jacobian : 0.0;
       yj_here = rj.y;
       yj_here.x1 = res.x1;
+      yj_here.jitter = res.camera.jitter;
+      yj_here.lens = res.camera.lens;
+      yj_here.time = res.camera.time;
       yj_here.density = res.density;
       fj = res.f;
       denom = jac > 0.0 ? c_c * p_here + rj.confidence * rj.p_hat / jac : 0.0;

@@ -1,6 +1,6 @@
 #version 460
 // Pass `temporal`, gather mode (method restir-gather; Lin et al. 2022 section 7, as RS-main 3.3
-// writes GRIS): the current pixel-centre primary hit is backprojected with the previous camera and
+// writes GRIS): the current primary hit (the visibility buffer) is backprojected with the previous camera and
 // object transforms to the previous pixel q; q's reservoir (frame t-1) is shifted into this pixel
 // (frame t) and resampled together with the canonical sample. MIS is the two-domain generalized
 // balance heuristic (RS-main Eq. 6/7): the canonical sample is shifted back into q in frame t-1
@@ -112,7 +112,12 @@ void main() {
       continue;
     }
     if (back && !reservoir_valid(canonical)) break;
-    ShiftResult s = shift_path(back, back ? vec2(q) : vec2(pixel), back ? canonical.y : history.y, moved);
+    // The target domain's primary vertex: this pixel's in frame t, q's in frame t-1. (An if, not a
+    // ?: between the two buffers: glslang then stores one block's struct type into the other's.)
+    GpuPrimaryHit target = b_primary[pixel_index(pixel)];
+    if (back) target = b_primary_prev[q.y * u_frame.prev_width + q.x];
+    DomainPrimary dp = domain_primary(target);
+    ShiftResult s = shift_path(back, back ? vec2(q) : vec2(pixel), dp, back ? canonical.y : history.y, moved);
     count_shift(s);
     if (!back) fw = s;
     // p-hat from q of the canonical sample (RS-main Eq. 7): p-hat_q(T(y_c)) |dT/dy_c|.

@@ -19,6 +19,16 @@
 // For the shift to be a bijection the offset path must have the same structure: its first
 // reconnectable vertex must be k again (else the shift fails, Lin 2022 section 6.2).
 //
+// Domains with a fixed primary vertex (PRIMARY_DOMAIN, the gather methods; docs/ARCHITECTURE.md,
+// "Domains and their primary vertex"). There a domain (pixel, frame) is the set of paths that start
+// at the pixel's primary vertex of that frame, y_1, the hit of the camera sample the primary pass
+// drew for it (the visibility buffer); its integral is the pixel's given that camera sample, and
+// the camera sample's own expectation is taken over frames, as pt's is over its samples. The
+// sample space is then the directions after y_1 only, the offset path starts at the target
+// domain's y_1 (DomainPrimary: no camera ray is traced) and the factors above are unchanged (the
+// camera sample's factor was 1). Splat methods keep the camera sample in the sample (RS-main 4.1:
+// a splat carries its primary hit), and their shifts trace the camera ray.
+//
 // Moving scenes. The kept suffix after x_k is known through its radiance. When the scene moved
 // between the frames of the two domains, a sample with a non-empty suffix (0 < k < n) is handled
 // as u_restir.suffix_mode says: SUFFIX_REPLAY traces it again in the target frame (exact, both
@@ -40,6 +50,39 @@ const uint SUFFIX_NONE = 0u;      // no suffix (k = 0 or k = n), or the shift fa
 const uint SUFFIX_KEPT = 1u;      // the stored radiance was used
 const uint SUFFIX_REPLAYED = 2u;  // traced again (its rays are in replay_rays)
 
+// The primary vertex of the target domain of a shift: fixed (PRIMARY_DOMAIN: the domain's
+// visibility-buffer entry in its frame, with its camera sample), or free (the offset path traces
+// the camera ray of the sample's own camera sample).
+struct DomainPrimary {
+  bool is_fixed;
+  GpuPrimaryHit hit;
+};
+
+DomainPrimary domain_primary_free() {
+  DomainPrimary d;
+  d.is_fixed = false;
+  d.hit.t = 0.0;
+  d.hit.instance = 0u;
+  d.hit.geometry = 0u;
+  d.hit.triangle = 0u;
+  d.hit.bary = vec2(0.0);
+  d.hit.lod = 0u;
+  d.hit.flags = 0u;
+  d.hit.jitter = vec2(0.5);
+  d.hit.lens = 0u;
+  d.hit.time = 0.0;
+  return d;
+}
+
+// The domain of a visibility-buffer entry when the frame fixes primary vertices, else free.
+DomainPrimary domain_primary(GpuPrimaryHit h) {
+  DomainPrimary d = domain_primary_free();
+  if (u_frame.primary_mode != PRIMARY_DOMAIN) return d;
+  d.is_fixed = true;
+  d.hit = h;
+  return d;
+}
+
 struct ShiftResult {
   uint reason;       // SHIFT_OK or SHIFT_FAIL_*
   vec3 f;            // f of the offset path in the domain (rgb; its luminance is p-hat)
@@ -47,6 +90,7 @@ struct ShiftResult {
   float jacobian;    // |dy/dx| = density(x) / density(y), bounded (shift_jacobian); 0 when the shift failed.
                      // A splat multiplies in its camera and time factors (restir/splat.glsl).
   SurfacePoint x1;   // its primary hit
+  CameraSample camera;  // its camera sample: the sample's own, or the target domain's when fixed
   uint rays;         // all rays traced, replay_rays included
   // The offset path's suffix as its sample stores it (restir/reservoir.h): the base's, unless replayed.
   vec3 xk_radiance;
@@ -63,6 +107,9 @@ ShiftResult shift_none(uint reason) {
   r.density = 0.0;
   r.jacobian = 0.0;
   r.x1 = surface_none();
+  r.camera.jitter = vec2(0.5);
+  r.camera.lens = vec2(0.5);
+  r.camera.time = 0.0;
   r.rays = 0u;
   r.xk_radiance = vec3(0.0);
   r.light_pdf_end = 0.0;
@@ -92,6 +139,9 @@ float shift_jacobian(float base, float offset) {
 // The sample T(y) that a successful shift of y produced, as a reservoir keeps it.
 PathSample shifted_sample(PathSample y, ShiftResult s) {
   y.x1 = s.x1;
+  y.jitter = s.camera.jitter;
+  y.lens = s.camera.lens;
+  y.time = s.camera.time;
   y.density = s.density;
   y.xk_radiance = s.xk_radiance;
   y.light_pdf_end = s.light_pdf_end;
@@ -125,8 +175,9 @@ bool reconnection_visible(bool prev, Vertex v, vec3 d, float dist, bool to_envir
 }
 
 // Evaluates the sample y, shifted into the domain of `pixel` in the current (prev = false) or the
-// previous frame. suffix_changed: the scene moved between y's frame and the domain's frame.
-ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed) {
+// previous frame, whose primary vertex is `dp`. suffix_changed: the scene moved between y's frame
+// and the domain's frame.
+ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bool suffix_changed) {
   ShiftResult r = shift_none(SHIFT_OK);
   r.xk_radiance = y.xk_radiance;
   r.light_pdf_end = y.light_pdf_end;
@@ -147,14 +198,23 @@ ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed)
   // The pure reconnection shift replays only the camera sample and reconnects at x_2.
   if (u_restir.shift_mode == SHIFT_RECONNECTION && k != 2u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
 
-  // One loop traces every segment found by replay: segment 0 is the camera ray (subpixel and lens
-  // sample kept), segment j >= 1 leaves y_j in the direction replayed from the sample's random
-  // numbers. With k >= 2 the loop ends at y_{k-1}; with k = 0 its last segment finds the path's end.
+  // One loop finds every segment by replay: segment 0 is the camera ray (the sample's camera
+  // sample kept; with a fixed primary vertex the domain's, whose hit is known), segment j >= 1
+  // leaves y_j in the direction replayed from the sample's random numbers. With k >= 2 the loop
+  // ends at y_{k-1}; with k = 0 its last segment finds the path's end.
   // (A single tracing call site: lavapipe inlines a BVH traversal per call site.)
   uint last_traced = k >= 2u ? k - 2u : n - 1u;
+  r.camera.jitter = y.jitter;
+  r.camera.lens = y.lens;
+  r.camera.time = y.time;
+  if (dp.is_fixed) {
+    r.camera.jitter = dp.hit.jitter;
+    r.camera.lens = unpackUnorm2x16(dp.hit.lens);
+    r.camera.time = dp.hit.time;
+  }
   vec3 origin;
   vec3 dir;
-  primary_ray(camera_at(prev, y.time), pixel, y.jitter, y.lens, origin, dir);
+  primary_ray(camera_at(prev, r.camera.time), pixel, r.camera.jitter, r.camera.lens, origin, dir);
   vec3 f_prefix = vec3(1.0);
   float density = 1.0;
   float pdf = 0.0;
@@ -172,8 +232,14 @@ ShiftResult shift_path(bool prev, vec2 pixel, PathSample y, bool suffix_changed)
     }
     bool path_end = k == 0u && j == n - 1u;  // this segment must find the path's last vertex
     RayHit h;
-    r.rays++;
-    if (!trace_closest_in(prev, origin, dir, 1e30, h)) {
+    bool found;
+    if (j == 0u && dp.is_fixed) {
+      found = primary_hit(dp.hit, h);  // the domain's primary vertex y_1
+    } else {
+      r.rays++;
+      found = trace_closest_in(prev, origin, dir, 1e30, h);
+    }
+    if (!found) {
       if (!(path_end && escaped)) return shift_fail(r, j == 0u ? SHIFT_FAIL_PRIMARY : SHIFT_FAIL_REPLAY);
       if (rule_end(v, true, 0.0, camera_distance, 1.0)) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
       le = u_frame.environment.rgb;

@@ -15,11 +15,10 @@
 #include "sampling/ray_offset.h"
 #include "sampling/warp.h"
 #include "include/camera.glsl"
+#include "restir/camera_sample.glsl"
 
-// Random-number dimensions of a path (rng_dim): the camera, then a block per vertex x_i.
-const uint DIM_JITTER = 0u;  // 2 dimensions
-const uint DIM_LENS = 2u;    // 2 dimensions
-const uint DIM_TIME = 4u;    // shutter time (RS-main 4.4)
+// Random-number dimensions of a path (rng_dim): the camera sample (restir/camera_sample.glsl),
+// then a block per vertex x_i.
 const uint DIM_BSDF = 0u;    // within a vertex block: 3 dimensions
 const uint DIM_RR = 3u;      // Russian roulette
 const uint DIM_NEE = 4u;     // 3 dimensions per light candidate

@@ -156,7 +156,7 @@ float shift_finish(ShiftJob job, INOUT(ShiftResult) r) {
 // Runs a prepared job (its shift_path call is the caller's one call site when used in a loop).
 ShiftResult run_shift(ShiftJob job, bool suffix_changed) {
   if (!job.ok) return shift_none(job.reason);
-  return shift_path(job.prev, job.pixel, job.y, suffix_changed);
+  return shift_path(job.prev, job.pixel, domain_primary_free(), job.y, suffix_changed);  // a splat carries its camera sample
 }
 
 // Splats sample y (of the other frame: the previous one when `prev` is false, and the reverse) into

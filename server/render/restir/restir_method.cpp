@@ -23,7 +23,7 @@ RestirMethod::RestirMethod(const SharedResources& shared, const RenderSettings& 
         break;
       case StageKind::shade: stages_.push_back(make_shade_stage(state_)); break;
       case StageKind::primary:
-        if (o.temporal || o.spatial) stages_.push_back(make_primary_stage(state_));  // the temporal and spatial stages read it
+        if (state_.primary_stage) stages_.push_back(make_primary_stage(state_));
         break;
       case StageKind::path_trace: break;
     }
@@ -66,7 +66,7 @@ std::vector<PassDecision> RestirMethod::decisions() const {
     if (const Stage* s = find(kind)) d.push_back(s->decision());
     else d.push_back({pass, false, absent});
   };
-  add(StageKind::primary, "primary", "no stage reads pixel-centre hits (restir.temporal = false, restir.spatial = false)");
+  add(StageKind::primary, "primary", "no stage reads primary hits (restir.temporal = false, restir.spatial = false)");
   add(StageKind::initial, "initial", "");
   add(state_.spec.temporal, "temporal", "disabled (restir.temporal = false)");
   add(StageKind::spatial, "spatial", "disabled (restir.spatial = false)");

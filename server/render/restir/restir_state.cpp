@@ -46,7 +46,9 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
       spec(method),
       width(render_settings.width),
       height(render_settings.height),
-      domains(uint64_t(render_settings.width) * render_settings.height) {
+      domains(uint64_t(render_settings.width) * render_settings.height),
+      fixed_primary(method.fixed_primary),
+      primary_stage(method.fixed_primary || render_settings.restir.temporal || render_settings.restir.spatial) {
   const auto& ctx = shared.ctx;
   constants = gpu::Buffer(ctx, sizeof(gpu::GpuRestirConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "restir constants");
   gpu::GpuRestirConstants c = make_constants(settings, spec);
@@ -56,17 +58,18 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
   // Per domain f(Y) of the reservoir there, per pixel what the camera rays see directly, per
   // domain the estimate the shade pass adds (restir/domain.h).
   contribution = device_storage(ctx, sizeof(glm::vec4) * (2 * domains + uint64_t(width) * height), "contribution");
-  // The temporal stages and the spatial stage's neighbour filter read the visibility buffer; without
-  // either there is no primary stage.
-  if (settings.restir.temporal || settings.restir.spatial)
-    visibility = PingPong(ctx, sizeof(gpu::GpuPrimaryHit) * size_t(width) * height, "visibility buffer");
+  // The temporal stages, the spatial stage's neighbour filter and, with fixed primary vertices, the
+  // initial stage read the visibility buffer. Without any of them there is no primary stage, and
+  // the initial pass binds one entry that it never reads (its layout has the binding).
+  const size_t entries = primary_stage ? size_t(width) * height : 1;
+  visibility = PingPong(ctx, sizeof(gpu::GpuPrimaryHit) * entries, "visibility buffer");
 }
 
 std::map<std::string, uint64_t> RestirState::memory_bytes() const {
   std::map<std::string, uint64_t> m = {{"reservoirs", work.size() + history.size()},
                                        {"contribution", contribution.size()},
                                        {"frame_constants_and_counters", constants.size()}};
-  if (visibility.size() > 0) m["visibility"] = visibility.size();
+  if (primary_stage) m["visibility"] = visibility.size();
   return m;
 }
 

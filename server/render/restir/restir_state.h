@@ -26,12 +26,14 @@ struct RestirState {
   const MethodSpec& spec;
   uint32_t width, height;
   uint64_t domains;           // width * height: one layer (restir/domain.h)
+  bool fixed_primary;         // PRIMARY_DOMAIN: the method's domains start at the visibility buffer's hits
+  bool primary_stage;         // the primary stage runs: fixed primary vertices, or a temporal or spatial stage reads it
 
   gpu::Buffer constants;      // GpuRestirConstants (uniform)
   gpu::Buffer work;           // per domain: canonical, then temporal output
   PingPong history;           // per domain: the frame's final reservoirs
   gpu::Buffer contribution;   // per domain f(Y) of its reservoir, then per pixel the directly seen emission
-  PingPong visibility;        // per pixel: the pixel-centre hit (GpuPrimaryHit); allocated with the primary stage
+  PingPong visibility;        // per pixel: the primary stage's hit (GpuPrimaryHit); one entry when it does not run
 
   std::map<std::string, uint64_t> memory_bytes() const;
 };

@@ -11,7 +11,8 @@ class InitialStage : public Stage {
   explicit InitialStage(const RestirState& state)
       : state_(state),
         pass_(state.shared.ctx, &state.shared.scene, {.lights = true, .history = false}, "restir_initial",
-              restir_resources(state, storage(BINDING_RESERVOIRS_OUT, Access::write, state.work))) {}
+              restir_resources(state, storage(BINDING_RESERVOIRS_OUT, Access::write, state.work),
+                               {history_current(BINDING_PRIMARY, Access::read, state.visibility)})) {}
   StageKind kind() const override { return StageKind::initial; }
   uint32_t timed_passes() const override { return 1; }
   void record(const StageFrame& f) override {
@@ -21,9 +22,10 @@ class InitialStage : public Stage {
     const RestirOptions& o = state_.settings.restir;
     const bool di = state_.spec.direct_lighting || o.direct_lighting;
     std::string paths = di ? "one-bounce paths (ReSTIR DI)" : "paths of up to " + std::to_string(state_.settings.max_depth) + " segments";
+    std::string start = state_.fixed_primary ? ", from the pixel's primary hit of the frame" : ", each with its own camera ray";
     return {"initial", true,
             std::to_string(o.initial_candidates) + " candidate path(s), " + std::to_string(o.light_candidates) +
-                " light candidate(s) per vertex, " + paths};
+                " light candidate(s) per vertex, " + paths + start};
   }
 
  private:

@@ -1,5 +1,6 @@
-// Stage `primary`: the visibility buffer of this frame (shaders/passes/primary.comp): the
-// pixel-centre hit of every pixel, traced once, into RestirState::visibility's current slot.
+// Stage `primary`: the visibility buffer of this frame (shaders/passes/primary.comp): one camera ray
+// per pixel (its camera sample with fixed primary vertices, else the pixel centre), traced once,
+// into RestirState::visibility's current slot.
 #include "include/bindings.h"
 #include "render/restir/restir_state.h"
 #include "render/restir/stages.h"
@@ -19,7 +20,11 @@ class PrimaryStage : public Stage {
   void record(const StageFrame& f) override {
     timed(f, "primary", [&] { pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height); });
   }
-  PassDecision decision() const override { return {"primary", true, "pixel-centre hits for the temporal stage and the spatial neighbour filter"}; }
+  PassDecision decision() const override {
+    if (state_.fixed_primary)
+      return {"primary", true, "each pixel's camera sample of the frame: its domain's primary vertex, where its paths and every shift into it start"};
+    return {"primary", true, "pixel-centre hits for the temporal stage and the spatial neighbour filter"};
+  }
   void collect(std::span<const uint32_t>, FrameStats& s) const override {
     s.rays_traced["primary"] = uint64_t(state_.width) * state_.height;  // one ray per pixel
   }
