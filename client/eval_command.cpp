@@ -65,6 +65,7 @@ std::string command_line(const EvalArgs& a) {
   if (a.splats_per_frame) s << " --splats-per-frame " << *a.splats_per_frame;
   if (const std::string r = restir_flags_text(a.restir); !r.empty()) s << " " << r;
   if (a.equal_time) s << " --equal-time";
+  if (a.timing_rounds > 1) s << " --timing-rounds " << a.timing_rounds;
   s << " --out " << a.out;
   return s.str();
 }
@@ -99,21 +100,26 @@ class Evaluation {
     insets.frame = a_.frames - 1;
     insets.images.emplace_back("reference", png(refs.back().image, a_.exposure));
     std::map<std::string, report::Run> runs;  // the methods' own runs
-    std::map<uint32_t, report::Run> pt_by_spp;
     for (const auto& method : a_.methods) {
       image::Image last;
       std::vector<float> flip_map;
       runs[method] = run(scene, method, 1, refs, &last, &flip_map);
-      rep.runs.push_back(runs[method]);
       insets.images.emplace_back(method, png(last, a_.exposure));
       insets.images.emplace_back("error:" + method, report::error_map_png(flip_map, last.width, last.height, 1.0f));
-      if (method == "pt") pt_by_spp[1] = runs[method];
     }
+    // pt's GPU time per sample, from a 1-spp run over the same frames when pt is not a method.
+    report::Run pt_timing;
+    if (a_.equal_time && !runs.count("pt")) pt_timing = run(scene, "pt", 1, refs);
+    std::vector<report::Run*> timed;
+    for (const auto& method : a_.methods) timed.push_back(&runs[method]);
+    if (!pt_timing.frames.empty()) timed.push_back(&pt_timing);
+    time_rounds(scene, timed, refs);
+    for (const auto& method : a_.methods) rep.runs.push_back(runs[method]);
     rep.insets.push_back(std::move(insets));
     if (!a_.equal_time) return;
 
-    // pt's GPU time per sample from a 1-spp run over the same frames.
-    if (!pt_by_spp.count(1)) pt_by_spp[1] = run(scene, "pt", 1, refs);
+    std::map<uint32_t, report::Run> pt_by_spp;
+    pt_by_spp[1] = runs.count("pt") ? runs["pt"] : pt_timing;
     const double pt_ms_per_spp = median_gpu_ms(pt_by_spp[1]);
     pt_ms_per_spp_[scene] = pt_ms_per_spp;
     for (const auto& method : a_.methods) {
@@ -121,9 +127,12 @@ class Evaluation {
       const report::Run& m = runs[method];
       const uint32_t spp = equal_time_spp(median_gpu_ms(m), pt_ms_per_spp, client_.status().limits().max_spp());
       if (pt_by_spp.count(spp)) {
-        step_by(a_.frames);  // the same pt run serves again
+        step_by(uint64_t(a_.frames) * a_.timing_rounds);  // the same pt run serves again
       } else {
-        pt_by_spp[spp] = run(scene, "pt", spp, refs);
+        report::Run pt = run(scene, "pt", spp, refs);
+        std::vector<report::Run*> one = {&pt};
+        time_rounds(scene, one, refs);
+        pt_by_spp[spp] = std::move(pt);
       }
       report::Run pt = pt_by_spp[spp];
       pt.equal_time_pt = true;
@@ -142,6 +151,17 @@ class Evaluation {
   }
 
  private:
+  // --timing-rounds R: R - 1 more runs of each of `runs`, taken in turn so that a slow stretch of the
+  // machine falls on all of them; each run keeps the median frame time of every round (round_ms),
+  // and its time is their median. The errors are deterministic for the seed: only the first
+  // round's frames are kept.
+  void time_rounds(const std::string& scene, const std::vector<report::Run*>& runs, const std::vector<ReferenceImage>& refs) {
+    if (a_.timing_rounds <= 1) return;
+    for (report::Run* r : runs) r->round_ms = {median_gpu_ms(*r)};
+    for (uint32_t round = 1; round < a_.timing_rounds; ++round)
+      for (report::Run* r : runs) r->round_ms.push_back(median_gpu_ms(run(scene, r->method, r->spp, refs)));
+  }
+
   // One method's run over the frames, scored; the last frame's image and HDR-FLIP map when asked.
   report::Run run(const std::string& scene, const std::string& method, uint32_t spp, const std::vector<ReferenceImage>& refs,
                   image::Image* last = nullptr, std::vector<float>* flip_map = nullptr) {
@@ -214,6 +234,7 @@ int run_eval(EvalArgs& a, bool frames_given) {
               {"reference_spp", a.reference_spp},
               {"reference_error", a.reference_error},
               {"equal_time", a.equal_time},
+              {"timing_rounds", a.timing_rounds},
               {"camera_path", a.camera_path.empty() ? nlohmann::json() : nlohmann::json(a.camera_path)},
               {"shutter", a.shutter ? nlohmann::json(*a.shutter) : nlohmann::json()},
               {"splats_per_frame", a.splats_per_frame ? nlohmann::json(*a.splats_per_frame) : nlohmann::json()},
@@ -222,7 +243,8 @@ int run_eval(EvalArgs& a, bool frames_given) {
   uint64_t non_pt = 0;
   for (const auto& m : a.methods) non_pt += m != "pt";
   const bool has_pt = non_pt < a.methods.size();
-  const uint64_t per_scene = a.frames * (1 + a.methods.size() + (a.equal_time ? non_pt + (has_pt ? 0 : 1) : 0));
+  const uint64_t runs_per_scene = a.methods.size() + (a.equal_time ? non_pt + (has_pt ? 0 : 1) : 0);
+  const uint64_t per_scene = a.frames * (1 + runs_per_scene * a.timing_rounds);
   Evaluation eval(a, client, per_scene * a.scenes.size());
   std::cerr << "strata: eval of " << a.scenes.size() << " scene(s) x " << a.methods.size() << " method(s), " << a.frames
             << " frame(s) at " << a.width << "x" << a.height << " on " << client.status().device() << " (" << a.conn.server << ")\n";
@@ -272,6 +294,11 @@ Runner add_eval_command(CLI::App& app) {
   cmd->add_option("--seed", a->seed, "random seed of the methods (references derive theirs from it)")->capture_default_str();
   cmd->add_option("--max-depth", a->max_depth, "path segments (default: the server's)");
   cmd->add_flag("--equal-time", a->equal_time, "also run pt with as many spp as fit in each method's median frame time");
+  cmd->add_option("--timing-rounds", a->timing_rounds,
+                  "runs of every method (and equal-time pt run), taken in turn; a run's time is the median of its rounds' "
+                  "median frame times (1..16)")
+      ->check(CLI::Range(1u, 16u))
+      ->capture_default_str();
   cmd->add_option("--exposure", a->exposure, "exposure of the PNG insets in stops")->capture_default_str();
   cmd->add_option("--out", a->out, "output directory")->capture_default_str();
   cmd->add_option("--timeout", a->timeout_s, "seconds for each call (a reference can take long)")->capture_default_str();

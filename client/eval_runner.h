@@ -29,6 +29,7 @@ struct EvalSettings {
   uint32_t reference_spp = 1024;
   float reference_error = 0.0f;    // 0: no early stop
   bool equal_time = false;
+  uint32_t timing_rounds = 1;      // runs of each method whose median frame times are its time
   std::string camera_path;         // empty: each scene's default animation
   std::vector<v1::FrameInput> path;  // its entries, one per frame (eval_frames.h)
   std::optional<float> shutter;    // --shutter: every entry's camera.shutter

@@ -50,6 +50,7 @@ double median(std::vector<double> v) {
 }
 
 double median_gpu_ms(const report::Run& run) {
+  if (!run.round_ms.empty()) return median(run.round_ms);  // --timing-rounds
   std::vector<double> ms;
   for (const auto& f : run.frames) ms.push_back(f.gpu_ms);
   return median(std::move(ms));

@@ -17,6 +17,7 @@ report::FrameResult score_frame(const MethodImage& m, const ReferenceImage& ref,
                                 std::vector<float>* flip_map = nullptr);
 
 double median(std::vector<double> values);
+// A run's time: the median of its frames' GPU ms, or with --timing-rounds the median of its rounds' (Run::round_ms).
 double median_gpu_ms(const report::Run& run);
 report::Errors mean_errors(const report::Run& run);  // over frames, whole image
 

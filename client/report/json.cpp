@@ -32,6 +32,7 @@ nlohmann::json run_json(const Run& run) {
           {"spp", run.spp},
           {"equal_time_pt", run.equal_time_pt},
           {"matched_method", run.matched_method},
+          {"round_ms", run.round_ms},
           {"frames", std::move(frames)}};
 }
 

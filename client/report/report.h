@@ -35,6 +35,10 @@ struct Run {
   bool equal_time_pt = false;                // pt given the time of `matched_method`
   std::string matched_method;
   std::vector<FrameResult> frames;
+  // With --timing-rounds R > 1: the median frame time of each of the R runs of this method (the
+  // first is `frames`'s own; the errors are the same every round, the ms are not). The run's time
+  // is their median (median_gpu_ms).
+  std::vector<double> round_ms;
 };
 
 // Equal-time comparison: pt with `pt_spp` samples per frame against a method's median frame time.

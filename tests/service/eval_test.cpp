@@ -2,6 +2,7 @@
 // The three files are written, every number in them is finite, the CSV has one row per run and
 // frame, equal-time pt runs are there, a second run takes every reference from the server's cache,
 // and unknown scenes or methods are refused before any work.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -176,6 +177,52 @@ TEST(EvalTest, UnknownScenesAndMethodsAreRefusedBeforeAnyWork) {
   EXPECT_NE(frames.output.find("--frames must be at least 1"), std::string::npos) << frames.output;
   EXPECT_FALSE(fs::exists(dir.path / "out")) << "nothing was started";
   EXPECT_FALSE(fs::exists(dir.path / "cache"));
+}
+
+}  // namespace
+}  // namespace strata::test
+
+namespace strata::test {
+namespace {
+
+double median_of(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// --timing-rounds: every run (the methods', the equal-time pt runs) is timed R times, its time is
+// the median of the rounds' median frame times, and the equal-time comparison uses those.
+TEST(EvalTest, TimingRoundsTimeEveryRunAndUseTheirMedian) {
+  TempDir dir;
+  Daemon daemon({"--reference-cache", (dir.path / "cache").string()});
+  auto args = eval_args(daemon.address(), dir.path / "rounds");
+  for (const char* a : {"--timing-rounds", "3"}) args.push_back(a);
+  const auto result = run_process(args, 300s);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const auto doc = nlohmann::json::parse(read_file(dir.path / "rounds" / "results.json"));
+  EXPECT_EQ(doc["meta"]["timing_rounds"], 3);
+  EXPECT_NE(doc["meta"]["command_line"].get<std::string>().find("--timing-rounds 3"), std::string::npos);
+  std::map<std::string, double> time_of;  // method, or "pt@spp" for equal-time pt runs
+  for (const auto& run : doc["runs"]) {
+    ASSERT_EQ(run["round_ms"].size(), 3u) << run["method"];
+    ASSERT_EQ(run["frames"].size(), 3u) << "the errors are the first round's frames";
+    const auto rounds = run["round_ms"].get<std::vector<double>>();
+    for (double ms : rounds) EXPECT_GT(ms, 0.0);
+    const std::string key = run["equal_time_pt"].get<bool>() ? "pt@" + std::to_string(run["spp"].get<int>()) : run["method"].get<std::string>();
+    time_of[key] = median_of(rounds);
+  }
+  ASSERT_EQ(doc["equal_time"].size(), 1u);
+  const auto& et = doc["equal_time"][0];
+  EXPECT_DOUBLE_EQ(et["method_median_ms"].get<double>(), time_of["restir-gather"]);
+  EXPECT_DOUBLE_EQ(et["pt_median_ms"].get<double>(), time_of["pt@" + std::to_string(et["pt_spp"].get<int>())]);
+  EXPECT_DOUBLE_EQ(doc["meta"]["pt_ms_per_spp"]["cornell"].get<double>(), time_of["pt"]);
+
+  args = eval_args(daemon.address(), dir.path / "bad");
+  for (const char* a : {"--timing-rounds", "0"}) args.push_back(a);
+  const auto bad = run_process(args, 60s);
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("--timing-rounds"), std::string::npos) << bad.output;
 }
 
 }  // namespace
