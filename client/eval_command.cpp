@@ -113,7 +113,7 @@ class Evaluation {
     std::vector<report::Run*> timed;
     for (const auto& method : a_.methods) timed.push_back(&runs[method]);
     if (!pt_timing.frames.empty()) timed.push_back(&pt_timing);
-    time_rounds(scene, timed, refs);
+    time_rounds(scene, timed);
     for (const auto& method : a_.methods) rep.runs.push_back(runs[method]);
     rep.insets.push_back(std::move(insets));
     if (!a_.equal_time) return;
@@ -131,7 +131,7 @@ class Evaluation {
       } else {
         report::Run pt = run(scene, "pt", spp, refs);
         std::vector<report::Run*> one = {&pt};
-        time_rounds(scene, one, refs);
+        time_rounds(scene, one);
         pt_by_spp[spp] = std::move(pt);
       }
       report::Run pt = pt_by_spp[spp];
@@ -153,13 +153,25 @@ class Evaluation {
  private:
   // --timing-rounds R: R - 1 more runs of each of `runs`, taken in turn so that a slow stretch of the
   // machine falls on all of them; each run keeps the median frame time of every round (round_ms),
-  // and its time is their median. The errors are deterministic for the seed: only the first
-  // round's frames are kept.
-  void time_rounds(const std::string& scene, const std::vector<report::Run*>& runs, const std::vector<ReferenceImage>& refs) {
+  // and its time is their median. The errors are deterministic for the seed, so the later rounds'
+  // frames are timed, not scored.
+  void time_rounds(const std::string& scene, const std::vector<report::Run*>& runs) {
     if (a_.timing_rounds <= 1) return;
     for (report::Run* r : runs) r->round_ms = {median_gpu_ms(*r)};
     for (uint32_t round = 1; round < a_.timing_rounds; ++round)
-      for (report::Run* r : runs) r->round_ms.push_back(median_gpu_ms(run(scene, r->method, r->spp, refs)));
+      for (report::Run* r : runs) r->round_ms.push_back(timed_run_ms(scene, r->method, r->spp));
+  }
+
+  // The median GPU ms of one more run of `method`, its frames unscored.
+  double timed_run_ms(const std::string& scene, const std::string& method, uint32_t spp) {
+    std::vector<double> ms;
+    auto t = Clock::now();
+    client_.run_method(scene, method, spp, a_, [&](MethodImage&& m) {
+      ms.push_back(m.gpu_ms);
+      step(m.frame, ms_since(t), m.gpu_ms, scene + " " + method + " spp " + std::to_string(spp) + " frame " + std::to_string(m.frame) + " (timing)");
+      t = Clock::now();
+    });
+    return median(std::move(ms));
   }
 
   // One method's run over the frames, scored; the last frame's image and HDR-FLIP map when asked.

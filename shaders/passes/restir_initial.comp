@@ -65,9 +65,7 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
   CameraSample cs;
   if (domain_primary) {
     ph = b_primary[pixel_index(pixel)];
-    cs.jitter = ph.jitter;
-    cs.lens = unpackUnorm2x16(ph.lens);
-    cs.time = ph.time;
+    cs = primary_camera_sample(ph);
   } else {
     cs = camera_sample(key);
   }

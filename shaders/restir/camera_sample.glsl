@@ -5,6 +5,7 @@
 #ifndef STRATA_CAMERA_SAMPLE_GLSL
 #define STRATA_CAMERA_SAMPLE_GLSL
 
+#include "restir/primary_data.h"
 #include "sampling/rng.h"
 
 // Random-number dimensions of the camera sample; a path's vertex blocks follow (path_vertex.glsl).
@@ -25,6 +26,15 @@ CameraSample camera_sample(uint key) {
   // Always part of the sample so that shifts between frames with and without motion blur stay
   // bijections; the camera depends on it only over an open shutter.
   c.time = rng_dim(key, DIM_TIME);
+  return c;
+}
+
+// The camera sample a visibility-buffer entry was traced with.
+CameraSample primary_camera_sample(GpuPrimaryHit p) {
+  CameraSample c;
+  c.jitter = p.jitter;
+  c.lens = unpackUnorm2x16(p.lens);
+  c.time = p.time;
   return c;
 }
 

@@ -207,11 +207,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
   r.camera.jitter = y.jitter;
   r.camera.lens = y.lens;
   r.camera.time = y.time;
-  if (dp.is_fixed) {
-    r.camera.jitter = dp.hit.jitter;
-    r.camera.lens = unpackUnorm2x16(dp.hit.lens);
-    r.camera.time = dp.hit.time;
-  }
+  if (dp.is_fixed) r.camera = primary_camera_sample(dp.hit);
   vec3 origin;
   vec3 dir;
   primary_ray(camera_at(prev, r.camera.time), pixel, r.camera.jitter, r.camera.lens, origin, dir);

@@ -20,7 +20,7 @@ class RestirMethod : public Method {
   std::vector<PassDecision> decisions() const override;
   std::map<std::string, uint64_t> memory_bytes() const override;
   void collect(std::span<const uint32_t> counters, FrameStats& stats) const override;
-  bool fixed_primary() const override { return state_.fixed_primary; }
+  bool fixed_primary() const override { return state_.spec.fixed_primary; }
 
  private:
   const Stage* find(StageKind kind) const;

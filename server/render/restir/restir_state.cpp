@@ -47,7 +47,6 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
       width(render_settings.width),
       height(render_settings.height),
       domains(uint64_t(render_settings.width) * render_settings.height),
-      fixed_primary(method.fixed_primary),
       primary_stage(method.fixed_primary || render_settings.restir.temporal || render_settings.restir.spatial) {
   const auto& ctx = shared.ctx;
   constants = gpu::Buffer(ctx, sizeof(gpu::GpuRestirConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "restir constants");

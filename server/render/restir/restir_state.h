@@ -26,7 +26,6 @@ struct RestirState {
   const MethodSpec& spec;
   uint32_t width, height;
   uint64_t domains;           // width * height: one layer (restir/domain.h)
-  bool fixed_primary;         // PRIMARY_DOMAIN: the method's domains start at the visibility buffer's hits
   bool primary_stage;         // the primary stage runs: fixed primary vertices, or a temporal or spatial stage reads it
 
   gpu::Buffer constants;      // GpuRestirConstants (uniform)

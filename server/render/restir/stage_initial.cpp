@@ -22,7 +22,7 @@ class InitialStage : public Stage {
     const RestirOptions& o = state_.settings.restir;
     const bool di = state_.spec.direct_lighting || o.direct_lighting;
     std::string paths = di ? "one-bounce paths (ReSTIR DI)" : "paths of up to " + std::to_string(state_.settings.max_depth) + " segments";
-    std::string start = state_.fixed_primary ? ", from the pixel's primary hit of the frame" : ", each with its own camera ray";
+    std::string start = state_.spec.fixed_primary ? ", from the pixel's primary hit of the frame" : ", each with its own camera ray";
     return {"initial", true,
             std::to_string(o.initial_candidates) + " candidate path(s), " + std::to_string(o.light_candidates) +
                 " light candidate(s) per vertex, " + paths + start};

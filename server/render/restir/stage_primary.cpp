@@ -21,7 +21,7 @@ class PrimaryStage : public Stage {
     timed(f, "primary", [&] { pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height); });
   }
   PassDecision decision() const override {
-    if (state_.fixed_primary)
+    if (state_.spec.fixed_primary)
       return {"primary", true, "each pixel's camera sample of the frame: its domain's primary vertex, where its paths and every shift into it start"};
     return {"primary", true, "pixel-centre hits for the temporal stage and the spatial neighbour filter"};
   }
