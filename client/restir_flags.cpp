@@ -17,7 +17,12 @@ void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
   cmd->add_option("--spatial-radius", r.spatial_radius, "ReSTIR spatial radius in pixels (1..256; default 2.5% of the image height, at least 4)");
   cmd->add_option("--initial-candidates", r.initial_candidates, "ReSTIR candidate paths per pixel (1..64; default 1)");
   cmd->add_option("--light-candidates", r.light_candidates, "ReSTIR NEE samples per path vertex (1..32; default 1)");
+  cmd->add_option("--disocclusion-spatial-neighbors", r.disocclusion_spatial_neighbors,
+                  "ReSTIR spatial neighbours of pixels without history (0..8; 0: --spatial-neighbors; default 6)");
+  cmd->add_option("--direct-strata", r.direct_strata,
+                  "ReSTIR: G x G stratified camera samples for what pixels at edges of directly seen emission see (1..8; default 3)");
   cmd->add_flag("--no-temporal", r.no_temporal, "ReSTIR: no temporal reuse");
+  cmd->add_flag("--no-temporal-filter", r.no_temporal_filter, "ReSTIR gather: take history from any previous pixel (no surface test)");
   cmd->add_flag("--no-spatial", r.no_spatial, "ReSTIR: no spatial reuse");
   cmd->add_flag("--biased", r.biased, "ReSTIR: confidence-only temporal weights, as in the DI tutorial (biased)");
 }
@@ -39,7 +44,10 @@ std::string restir_flags_text(const RestirFlags& r) {
   if (r.spatial_radius) add("--spatial-radius", num(*r.spatial_radius));
   if (r.initial_candidates) add("--initial-candidates", std::to_string(*r.initial_candidates));
   if (r.light_candidates) add("--light-candidates", std::to_string(*r.light_candidates));
+  if (r.disocclusion_spatial_neighbors) add("--disocclusion-spatial-neighbors", std::to_string(*r.disocclusion_spatial_neighbors));
+  if (r.direct_strata) add("--direct-strata", std::to_string(*r.direct_strata));
   if (r.no_temporal) add("--no-temporal", "");
+  if (r.no_temporal_filter) add("--no-temporal-filter", "");
   if (r.no_spatial) add("--no-spatial", "");
   if (r.biased) add("--biased", "");
   return s;
@@ -62,7 +70,10 @@ void set_restir_options(const RestirFlags& r, v1::RenderOptions& o) {
   if (r.spatial_radius) o.set_spatial_radius(*r.spatial_radius);
   if (r.initial_candidates) o.set_initial_candidates(*r.initial_candidates);
   if (r.light_candidates) o.set_light_candidates(*r.light_candidates);
+  if (r.disocclusion_spatial_neighbors) o.set_disocclusion_spatial_neighbors(*r.disocclusion_spatial_neighbors);
+  if (r.direct_strata) o.set_direct_strata(*r.direct_strata);
   if (r.no_temporal) o.set_temporal_reuse(false);
+  if (r.no_temporal_filter) o.set_temporal_filter(false);
   if (r.no_spatial) o.set_spatial_reuse(false);
   if (r.biased) o.set_unbiased(false);
 }

@@ -98,6 +98,12 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_option("--spatial-radius", r.spatial_radius, "ReSTIR spatial radius in pixels (0: 2.5% of the height, at least 4 px)")->capture_default_str();
   cmd->add_option("--initial-candidates", r.initial_candidates, "ReSTIR candidate paths per pixel")->capture_default_str();
   cmd->add_option("--light-candidates", r.light_candidates, "ReSTIR NEE samples per vertex")->capture_default_str();
+  cmd->add_option("--disocclusion-spatial-neighbors", r.disocclusion_spatial_neighbors,
+                  "ReSTIR spatial neighbours of pixels without history (0..8; 0: --spatial-neighbors)")
+      ->capture_default_str();
+  cmd->add_option("--direct-strata", r.direct_strata, "ReSTIR: G x G camera samples at edges of directly seen emission (1..8)")
+      ->capture_default_str();
+  cmd->add_flag("!--no-temporal-filter", r.temporal_filter, "ReSTIR gather: history from any previous pixel (no surface test)");
   cmd->add_flag("!--no-temporal", r.temporal, "ReSTIR: no temporal reuse");
   cmd->add_flag("!--no-spatial", r.spatial, "ReSTIR: no spatial reuse");
   cmd->add_flag("!--biased", r.unbiased, "ReSTIR: the DI tutorial's confidence-weighted temporal merge (biased)");

@@ -67,6 +67,11 @@ void RestirOptions::validate() const {
               range(1u, RESTIR_MAX_INITIAL_CANDIDATES));
   require(light_candidates >= 1 && light_candidates <= RESTIR_MAX_LIGHT_CANDIDATES,
           "restir.light_candidates = " + std::to_string(light_candidates) + " is outside " + range(1u, RESTIR_MAX_LIGHT_CANDIDATES));
+  require(disocclusion_spatial_neighbors <= RESTIR_MAX_SPATIAL_NEIGHBORS,
+          "restir.disocclusion_spatial_neighbors = " + std::to_string(disocclusion_spatial_neighbors) + " is outside " +
+              range(0u, RESTIR_MAX_SPATIAL_NEIGHBORS));
+  require(direct_strata >= 1 && direct_strata <= RESTIR_MAX_DIRECT_STRATA,
+          "restir.direct_strata = " + std::to_string(direct_strata) + " is outside " + range(1u, RESTIR_MAX_DIRECT_STRATA));
   require(splats_per_frame >= 1 && splats_per_frame <= RESTIR_MAX_SPLATS_PER_FRAME,
           "restir.splats_per_frame = " + std::to_string(splats_per_frame) + " is outside " + range(1u, RESTIR_MAX_SPLATS_PER_FRAME));
 }

@@ -45,6 +45,13 @@ struct RestirOptions {
   uint32_t light_candidates = 1;     // NEE samples per path vertex (the DI tutorial uses 32 at x1)
   bool direct_lighting = false;      // ReSTIR DI: paths of one bounce (camera, x1, light)
   uint32_t splats_per_frame = 1;     // restir-splat*: K time partitions over an open shutter (RS-main Eq. 19)
+  // Neighbours for pixels whose reservoir holds no history (disoccluded, or the first frame); 0: spatial_neighbors.
+  // Chosen by measurement: docs/BENCHMARKS.md, "Warm-up, disocclusions and what the camera sees directly".
+  uint32_t disocclusion_spatial_neighbors = 6;
+  // G: a pixel at the edge of something the camera sees emitting estimates what it sees directly
+  // with G x G stratified camera samples (restir_initial.comp); 1: the domain's camera sample only.
+  uint32_t direct_strata = 3;
+  bool temporal_filter = true;       // gather: the history pixel's centre surface must be like this pixel's
   void validate() const;
   // The radius the spatial pass uses for an image `height` pixels high.
   float spatial_radius_pixels(uint32_t height) const { return spatial_radius > 0.0f ? spatial_radius : default_spatial_radius(height); }

@@ -100,6 +100,34 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const v1::Ren
   out.push_back(make("light_candidates", asked(req.has_light_candidates(), u(req.light_candidates())),
                      u(eff.light_candidates()), method.reuse,
                      method.reuse ? "next-event-estimation candidates per path vertex" : no_reuse));
+  {
+    const uint32_t n = eff.disocclusion_spatial_neighbors();
+    out.push_back(make("disocclusion_spatial_neighbors",
+                       asked(req.has_disocclusion_spatial_neighbors(), u(req.disocclusion_spatial_neighbors())), u(n), spatial,
+                       !method.reuse ? no_reuse
+                       : !spatial    ? no_spatial
+                       : n == 0 || n == eff.spatial_neighbors()
+                           ? "pixels without history take spatial_neighbors like every other pixel"
+                           : "neighbours for pixels whose reservoir holds no history (disoccluded, or the first frame), "
+                             "instead of spatial_neighbors"));
+  }
+  out.push_back(make("direct_strata", asked(req.has_direct_strata(), u(req.direct_strata())), u(eff.direct_strata()),
+                     method.reuse && eff.direct_strata() > 1,
+                     !method.reuse ? no_reuse + "; pt averages its spp camera samples"
+                     : eff.direct_strata() == 1
+                         ? "what the camera sees directly comes from each pixel's own camera sample"
+                     : !temporal && !spatial && !method.fixed_primary
+                         ? "no visibility buffer to find the edges of directly seen emission (temporal and spatial reuse are off)"
+                         : "pixels next to both emitting and non-emitting neighbours estimate what they see directly with " +
+                               u(eff.direct_strata() * eff.direct_strata()) + " stratified camera samples"));
+  out.push_back(make("temporal_filter", asked(req.has_temporal_filter(), on_off(req.temporal_filter())),
+                     on_off(eff.temporal_filter()), temporal && !method.splatting,
+                     !method.reuse ? no_reuse
+                     : !temporal   ? no_temporal
+                     : method.splatting ? "method " + m + " splats its history forward; the filter is for backprojection"
+                     : eff.temporal_filter() ? "history only from a previous pixel whose centre surface is like this pixel's "
+                                               "(normal, distance, material kind): a disoccluded pixel starts afresh"
+                                             : "history from whatever the previous pixel saw"));
 
   // LoD mapping: decided from the scene when auto.
   {

@@ -56,6 +56,9 @@ void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, cons
   check_range(o.has_initial_candidates(), o.initial_candidates(), 1, RESTIR_MAX_INITIAL_CANDIDATES, p + "initial_candidates");
   check_range(o.has_light_candidates(), o.light_candidates(), 1, RESTIR_MAX_LIGHT_CANDIDATES, p + "light_candidates");
   check_range(o.has_splats_per_frame(), o.splats_per_frame(), 1, RESTIR_MAX_SPLATS_PER_FRAME, p + "splats_per_frame");
+  check_range(o.has_disocclusion_spatial_neighbors(), o.disocclusion_spatial_neighbors(), 0, RESTIR_MAX_SPATIAL_NEIGHBORS,
+              p + "disocclusion_spatial_neighbors", "0 = spatial_neighbors");
+  check_range(o.has_direct_strata(), o.direct_strata(), 1, RESTIR_MAX_DIRECT_STRATA, p + "direct_strata");
   check_float(o.has_exposure(), o.exposure(), -64.0f, 64.0f, p + "exposure");
 }
 
@@ -80,6 +83,9 @@ render::RestirOptions restir_options(const v1::RenderOptions& e) {
   r.initial_candidates = e.initial_candidates();
   r.light_candidates = e.light_candidates();
   r.splats_per_frame = e.splats_per_frame();
+  r.disocclusion_spatial_neighbors = e.disocclusion_spatial_neighbors();
+  r.direct_strata = e.direct_strata();
+  r.temporal_filter = e.temporal_filter();
   return r;
 }
 
@@ -109,6 +115,9 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const Servic
   o.set_temporal_reuse(restir.temporal);
   o.set_spatial_reuse(restir.spatial);
   o.set_unbiased(restir.unbiased);
+  o.set_disocclusion_spatial_neighbors(restir.disocclusion_spatial_neighbors);
+  o.set_direct_strata(restir.direct_strata);
+  o.set_temporal_filter(restir.temporal_filter);
   o.set_splats_per_frame(1);
   o.set_exposure(0.0f);
   o.MergeFrom(requested);  // proto3 optional: only fields that are set overwrite

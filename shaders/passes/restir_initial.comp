@@ -28,6 +28,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "restir/restir_pass.glsl"
 #include "restir/path_space.glsl"
 #include "sampling/light_sampling.glsl"
+#include "restir/restir_limits.h"
 
 
 layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
@@ -235,6 +236,56 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
   }
 }
 
+// What the camera sees directly (x_1's emission, or the environment when the ray escapes), by
+// G x G camera samples stratified over the pixel (G = direct_strata), each with its own lens sample
+// and time. Its mean is the same integral as the single camera ray's; stratification removes most
+// of the variance at the edges of bright, directly visible surfaces (a pixel that sees a light over
+// 2% of its area otherwise shows the whole light in 2% of its frames).
+vec3 direct_emission(uvec2 pixel, uint index) {
+  uint g = u_restir.direct_strata;
+  vec3 sum = vec3(0.0);
+  for (uint s = 0u; s < g * g; ++s) {
+    CameraSample cs = camera_sample(rng_key(index, RESTIR_MAX_INITIAL_CANDIDATES + s, u_frame.frame_index, u_frame.seed));
+    cs.jitter = (vec2(float(s % g), float(s / g)) + cs.jitter) / float(g);
+    vec3 origin;
+    vec3 dir;
+    primary_ray(camera_at(false, cs.time), vec2(pixel), cs.jitter, cs.lens, origin, dir);
+    RayHit h;
+    g_rays++;
+    if (!trace_closest(origin, dir, 1e30, h)) {
+      sum += u_frame.environment.rgb;
+      continue;
+    }
+    sum += load_vertex(false, h, dir).emission;
+  }
+  return sum / float(g * g);
+}
+
+// Whether this pixel is likely to straddle the edge of something the camera sees emitting (an
+// emitter, or the environment between objects): among its 8 neighbours' visibility-buffer entries
+// some see emission directly and some do not. It reads the neighbours only, never this pixel's own
+// camera sample, so the choice below leaves either estimate of the pixel unbiased.
+bool sees_emission(GpuPrimaryHit h) {
+  if ((h.flags & PRIMARY_HIT) == 0u) return luminance(u_frame.environment.rgb) > 0.0;
+  GpuPrimitive prim = b_primitives[b_instances[h.instance].primitive_base + h.geometry];
+  return any(greaterThan(b_materials[prim.material].emission_roughness.rgb, vec3(0.0)));
+}
+
+bool near_emission_edge(uvec2 pixel) {
+  bool seen = false;
+  bool unseen = false;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      ivec2 n = ivec2(pixel) + ivec2(dx, dy);
+      if ((dx == 0 && dy == 0) || n.x < 0 || n.y < 0 || n.x >= int(u_frame.width) || n.y >= int(u_frame.height)) continue;
+      bool e = sees_emission(b_primary[pixel_index(uvec2(n))]);
+      seen = seen || e;
+      unseen = unseen || !e;
+    }
+  }
+  return seen && unseen;
+}
+
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
@@ -259,6 +310,7 @@ void main() {
     r.confidence = 1.0;
     f = vec3(0.0);
   }
+  if (u_restir.direct_strata > 1u && near_emission_edge(pixel)) g_primary_emission = direct_emission(pixel, index);
   store_output(domain, r, f, g_state.estimate);  // the path's contributions summed, as pt's estimate
   b_contribution[primary_emission_index(pixel)] = vec4(g_primary_emission, 0.0);
   if (g_state.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], g_state.rejected);

@@ -18,6 +18,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "restir/path_space.glsl"
 #include "restir/restir_limits.h"
 #include "restir/thresholds.h"
+#include "restir/centre_surface.glsl"
 
 layout(set = 0, binding = BINDING_RESERVOIRS_IN, std430) readonly buffer ReservoirsIn { PackedReservoir b_in[]; };
 layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
@@ -25,45 +26,6 @@ layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { Gpu
 uint g_rays = 0u;
 
 float confidence_of(Reservoir r) { return confidence_capped(r.confidence, u_restir.confidence_cap); }
-
-// What the neighbour filter compares: a pixel's centre hit from the visibility buffer.
-struct CentreSurface {
-  bool valid;   // the centre ray hit a surface that resolves in this frame
-  vec3 normal;  // shading normal
-  float depth;  // distance along the centre ray
-  uint kind;    // SPATIAL_KIND_* bits of its material
-};
-
-CONST_DEF uint SPATIAL_KIND_EMISSIVE = 1u;
-CONST_DEF uint SPATIAL_KIND_METAL = 2u;
-CONST_DEF uint SPATIAL_KIND_ROUGH = 4u;  // rough enough to reconnect (restir/reconnection.h)
-
-CentreSurface centre_surface(uvec2 p) {
-  GpuPrimaryHit h = b_primary[pixel_index(p)];
-  SurfacePoint sp = primary_surface(h);
-  CentreSurface c;
-  c.valid = false;
-  c.normal = vec3(0.0, 0.0, 1.0);
-  c.depth = h.t;
-  c.kind = 0u;
-  if (sp.instance == SURFACE_NONE) return c;
-  ResolvedSurface r = resolve_surface(false, sp);
-  if (r.reason != RESOLVE_OK) return c;
-  GpuMaterial m = b_materials[r.hit.material];
-  BsdfParams b = make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular);
-  c.valid = true;
-  c.normal = r.hit.shading_normal;
-  c.kind = (any(greaterThan(m.emission_roughness.rgb, vec3(0.0))) ? SPATIAL_KIND_EMISSIVE : 0u) |
-           (m.base_color_metallic.a >= 0.5 ? SPATIAL_KIND_METAL : 0u) |
-           (rough_vertex(b.alpha, max(b.f0.r, max(b.f0.g, b.f0.b))) ? SPATIAL_KIND_ROUGH : 0u);
-  return c;
-}
-
-// The neighbour filter: geometry only (restir/thresholds.h SPATIAL_*).
-bool similar_surface(CentreSurface c, CentreSurface n) {
-  return n.valid && n.kind == c.kind && dot(c.normal, n.normal) >= SPATIAL_MIN_NORMAL_COS &&
-         abs(n.depth - c.depth) <= SPATIAL_MAX_DEPTH_RELATIVE * c.depth;
-}
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
@@ -78,18 +40,24 @@ void main() {
   // seeing a surface like this pixel's; each slot draws up to RESTIR_SPATIAL_TRIES candidates. A
   // pixel that sees no surface has no path to reuse into and takes no neighbours.
   Rng rng = rng_init(pixel_index(pixel), 0x5A71A1u, u_frame.frame_index, u_frame.seed);
-  CentreSurface here = centre_surface(pixel);
+  CentreSurface here = centre_surface(false, b_primary[pixel_index(pixel)]);
   uint count = 0u;
   uint filtered = 0u;
   uint nb[RESTIR_MAX_SPATIAL_NEIGHBORS];
   float c_total = c_c;
-  uint slots = here.valid ? min(u_restir.spatial_neighbors, RESTIR_MAX_SPATIAL_NEIGHBORS) : 0u;
+  // A pixel whose reservoir holds no history (disoccluded, or the first frame: its confidence is the
+  // canonical sample's alone) takes disocclusion_spatial_neighbors. Confidence depends on geometry
+  // only (backprojection and the neighbour filter), never on a sample, so the choice of domains
+  // stays independent of the samples.
+  uint wanted = u_restir.spatial_neighbors;
+  if (centre.confidence < 1.5 && u_restir.disocclusion_spatial_neighbors > 0u) wanted = u_restir.disocclusion_spatial_neighbors;
+  uint slots = here.valid ? min(wanted, RESTIR_MAX_SPATIAL_NEIGHBORS) : 0u;
   for (uint j = 0u; j < slots; ++j) {
     for (uint t = 0u; t < RESTIR_SPATIAL_TRIES; ++t) {
       vec2 o = sample_concentric_disk(rng_next_float2(rng)) * u_restir.spatial_radius;
       ivec2 p = ivec2(pixel) + ivec2(round(o));
       if (p.x < 0 || p.y < 0 || p.x >= int(u_frame.width) || p.y >= int(u_frame.height) || p == ivec2(pixel)) continue;
-      if (!similar_surface(here, centre_surface(uvec2(p)))) {
+      if (!similar_surface(here, centre_surface(false, b_primary[pixel_index(uvec2(p))]))) {
         filtered++;
         continue;
       }

@@ -17,6 +17,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "include/scene_bridge.glsl"
 #include "restir/restir_pass.glsl"
 #include "restir/path_space.glsl"
+#include "restir/centre_surface.glsl"
 
 layout(set = 0, binding = BINDING_RESERVOIRS_IN, std430) readonly buffer ReservoirsIn { PackedReservoir b_in[]; };
 layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
@@ -90,6 +91,14 @@ void main() {
   uvec2 q = bp.q;
   // Whether domain q takes part depends on geometry only. An empty reservoir in q still claims its
   // MIS share of the canonical sample (its confidence counts), it just brings no candidate.
+  // With the history filter, q takes part only when its centre surface in frame t-1 is like this
+  // pixel's centre surface moved back to frame t-1 (both at their distance from the previous
+  // camera): a pixel that was disoccluded has no history, instead of the occluder's.
+  if (have_history && (u_restir.flags & RESTIR_TEMPORAL_FILTER) != 0u) {
+    CentreSurface now = centre_surface(true, b_primary[pixel_index(pixel)]);
+    now.depth = length(bp.centre_before);
+    if (!similar_surface(now, centre_surface(true, b_primary_prev[q.y * u_frame.prev_width + q.x]))) have_history = false;
+  }
   if (have_history) history = unpack_reservoir(b_in[prev_domain_of(q, 0u)]);
   if (!have_history || !(history.confidence > 0.0)) {
     atomicAdd(b_counters[COUNTER_TEMPORAL_NO_HISTORY], 1u);

@@ -21,6 +21,7 @@ CONST_DEF uint MIS_PAIRWISE = 1u;  // confidence-weighted pairwise MIS, O(N) shi
 CONST_DEF uint RESTIR_UNBIASED = 1u;  // temporal MIS with the reverse shift (Lin 2022); else the DI
                                       // tutorial's confidence weights with heuristic validation
 CONST_DEF uint RESTIR_SPLAT_BACKUP = 2u;  // restir-splat-backup: also the backprojected backup sample (RS-main 4.2)
+CONST_DEF uint RESTIR_TEMPORAL_FILTER = 4u;  // gather temporal: q's previous centre surface must be like this pixel's
 
 struct GpuRestirConstants {
   uint initial_candidates;  // N_init paths per pixel
@@ -34,6 +35,10 @@ struct GpuRestirConstants {
   uint max_segments;        // path length limit (1 bounce for ReSTIR DI: 2 segments)
   uint splats_per_frame;    // K of multi-splatting over an open shutter (RS-main Eq. 19)
   uint suffix_mode;         // SUFFIX_*
+  uint disocclusion_spatial_neighbors;  // N for pixels whose reservoir holds no history (0: spatial_neighbors)
+  uint direct_strata;       // G: what the camera sees directly is estimated with G x G stratified camera samples (0: the N_init candidates' camera rays)
+  uint pad0;
+  uint pad1;
   uint pad2;
 };
 
@@ -52,7 +57,7 @@ STRATA_NAMESPACE_END
 
 #ifdef __cplusplus
 #include "include/frame_data.h"
-static_assert(sizeof(strata::gpu::GpuRestirConstants) == 48);
+static_assert(sizeof(strata::gpu::GpuRestirConstants) == 64);
 // The counter slots of shift failures hold one slot per reason: a new reason must not run into the
 // next block of counters (frame_data.h).
 static_assert(strata::gpu::COUNTER_TEMPORAL_FAIL + strata::gpu::SHIFT_REASONS <= strata::gpu::COUNTER_SPATIAL_FAIL);

@@ -10,6 +10,7 @@ CONST_DEF uint RESTIR_MAX_SPATIAL_NEIGHBORS = 8u;   // restir_spatial.comp keeps
 CONST_DEF uint RESTIR_MAX_INITIAL_CANDIDATES = 64u;
 CONST_DEF uint RESTIR_MAX_LIGHT_CANDIDATES = 32u;
 CONST_DEF uint RESTIR_MAX_SPLATS_PER_FRAME = 64u;   // K time partitions (RS-main Eq. 19)
+CONST_DEF uint RESTIR_MAX_DIRECT_STRATA = 8u;       // G x G camera samples for what the camera sees directly
 CONST_DEF float RESTIR_MIN_CONFIDENCE_CAP = 1.0f;
 CONST_DEF float RESTIR_MAX_CONFIDENCE_CAP = 1000.0f;
 CONST_DEF float RESTIR_MIN_SPATIAL_RADIUS = 1.0f;   // pixels

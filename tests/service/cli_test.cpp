@@ -102,6 +102,7 @@ TEST(CliTest, StrataStreamSendsRestirOptionsAndLogsReuse) {
                               "restir-gather", "--width", "16", "--height", "16", "--frames", "2", "--encodings", "raw",
                               "--shift", "reconnection", "--mis", "balance", "--confidence-cap", "10", "--spatial-neighbors",
                               "2", "--spatial-radius", "12", "--initial-candidates", "2", "--light-candidates", "3",
+                              "--disocclusion-spatial-neighbors", "5", "--direct-strata", "2", "--no-temporal-filter",
                               "--biased", "--out", (dir.path / "out").string()},
                              120s);
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -118,6 +119,9 @@ TEST(CliTest, StrataStreamSendsRestirOptionsAndLogsReuse) {
   EXPECT_EQ(o["initial_candidates"], 2);
   EXPECT_EQ(o["light_candidates"], 3);
   EXPECT_EQ(o["unbiased"], false);
+  EXPECT_EQ(o["disocclusion_spatial_neighbors"], 5);
+  EXPECT_EQ(o["direct_strata"], 2);
+  EXPECT_EQ(o["temporal_filter"], false);
   EXPECT_EQ(o["temporal_reuse"], true);
   EXPECT_EQ(o["spatial_reuse"], true);
   ASSERT_EQ(doc["frames"].size(), 2u);

@@ -39,7 +39,8 @@ void expect_status(const grpc::Status& st, StatusCode code, const std::string& m
 
 const char* const k_restir_options[] = {"shift",           "mis",          "unbiased",          "confidence_cap",
                                         "temporal_reuse",  "spatial_reuse", "spatial_neighbors", "spatial_radius",
-                                        "initial_candidates", "light_candidates"};
+                                        "initial_candidates", "light_candidates", "disocclusion_spatial_neighbors",
+                                        "direct_strata", "temporal_filter"};
 
 TEST_F(RestirTest, GatherSessionReportsItsOptionsAndStreamsReuseStatistics) {
   auto req = restir_request("restir-gather");
@@ -62,6 +63,9 @@ TEST_F(RestirTest, GatherSessionReportsItsOptionsAndStreamsReuseStatistics) {
   EXPECT_TRUE(s.options().temporal_reuse());
   EXPECT_TRUE(s.options().spatial_reuse());
   EXPECT_TRUE(s.options().unbiased());
+  EXPECT_EQ(s.options().disocclusion_spatial_neighbors(), 6u);
+  EXPECT_EQ(s.options().direct_strata(), 3u);
+  EXPECT_TRUE(s.options().temporal_filter());
   for (const char* name : k_restir_options) {
     const v1::Decision* d = decision(s, name);
     ASSERT_NE(d, nullptr) << name;
@@ -208,6 +212,12 @@ TEST_F(RestirTest, BadRestirOptionsAreInvalidArgumentNamingTheField) {
       "options.light_candidates = 33 is outside [1, 32]");
   add("light_candidates 0", "restir-di", [](auto& o) { o.set_light_candidates(0); },
       "options.light_candidates = 0 is outside [1, 32]");
+  add("disocclusion_spatial_neighbors 9", "restir-gather", [](auto& o) { o.set_disocclusion_spatial_neighbors(9); },
+      "options.disocclusion_spatial_neighbors = 9 is outside [0, 8] (0 = spatial_neighbors)");
+  add("direct_strata 0", "restir-gather", [](auto& o) { o.set_direct_strata(0); },
+      "options.direct_strata = 0 is outside [1, 8]");
+  add("direct_strata 9", "restir-splat", [](auto& o) { o.set_direct_strata(9); },
+      "options.direct_strata = 9 is outside [1, 8]");
   add("confidence_cap 0.5", "restir-gather", [](auto& o) { o.set_confidence_cap(0.5f); },
       "options.confidence_cap = 0.5 is outside [1, 1000]");
   add("confidence_cap 1001", "restir-gather", [](auto& o) { o.set_confidence_cap(1001.0f); },
@@ -226,7 +236,7 @@ TEST_F(RestirTest, BadRestirOptionsAreInvalidArgumentNamingTheField) {
     expect_status(create_session(stub(), c.request, &s), StatusCode::INVALID_ARGUMENT, c.message, c.what);
   }
   v1::Session s;
-  const grpc::Status spp = create_session(stub(), cases[11].request, &s);
+  const grpc::Status spp = create_session(stub(), cases[14].request, &s);
   EXPECT_NE(spp.error_message().find("spp must be 1"), std::string::npos) << spp.error_message();
   EXPECT_EQ(server_status(stub()).sessions(), 0u) << "a refused request left a session";
   // pt takes any spp within max_spp.

@@ -10,7 +10,7 @@
 namespace strata::render {
 namespace {
 
-gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec& spec) {
+gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec& spec, bool primary_stage) {
   const RestirOptions& o = s.restir;
   gpu::GpuRestirConstants c{};
   c.initial_candidates = o.initial_candidates;
@@ -20,8 +20,12 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
   c.confidence_cap = o.confidence_cap;
   c.spatial_radius = o.spatial_radius_pixels(s.height);
   c.spatial_neighbors = o.spatial_neighbors;
-  c.flags = (o.unbiased ? gpu::RESTIR_UNBIASED : 0u) | (spec.backup ? gpu::RESTIR_SPLAT_BACKUP : 0u);
+  c.disocclusion_spatial_neighbors = o.disocclusion_spatial_neighbors;
+  c.flags = (o.unbiased ? gpu::RESTIR_UNBIASED : 0u) | (spec.backup ? gpu::RESTIR_SPLAT_BACKUP : 0u) |
+            (o.temporal_filter ? gpu::RESTIR_TEMPORAL_FILTER : 0u);
   c.splats_per_frame = o.splats_per_frame;
+  // The edge test reads the neighbours' visibility-buffer entries: without a primary stage there are none.
+  c.direct_strata = primary_stage ? o.direct_strata : 1u;
   // auto replays: whether a path's suffix met a changed instance is not known without tracing it.
   c.suffix_mode = o.suffix == "fail" ? gpu::SUFFIX_FAIL : o.suffix == "cached" ? gpu::SUFFIX_CACHED : gpu::SUFFIX_REPLAY;
   // ReSTIR DI: camera, x1, light (one bounce).
@@ -50,7 +54,7 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
       primary_stage(method.fixed_primary || render_settings.restir.temporal || render_settings.restir.spatial) {
   const auto& ctx = shared.ctx;
   constants = gpu::Buffer(ctx, sizeof(gpu::GpuRestirConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "restir constants");
-  gpu::GpuRestirConstants c = make_constants(settings, spec);
+  gpu::GpuRestirConstants c = make_constants(settings, spec, primary_stage);
   constants.upload(&c, sizeof c);
   work = device_storage(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (work)");
   history = PingPong(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (history)");

@@ -1,0 +1,51 @@
+// What the geometric filters of reuse compare (docs/ARCHITECTURE.md, "Spatial neighbours" and
+// "Temporal history"): a pixel's centre hit from the visibility buffer, reduced to its shading normal,
+// its distance and its material kind. The filters decide which domains take part from these alone,
+// before any sample is looked at, so the MIS weights over the chosen domains stay unbiased.
+#ifndef STRATA_CENTRE_SURFACE_GLSL
+#define STRATA_CENTRE_SURFACE_GLSL
+
+#include "restir/reconnection.h"
+#include "restir/thresholds.h"
+
+struct CentreSurface {
+  bool valid;   // the centre ray hit a surface that resolves in the frame asked for
+  vec3 normal;  // shading normal
+  float depth;  // distance along the centre ray
+  uint kind;    // SURFACE_KIND_* bits of its material
+};
+
+CONST_DEF uint SURFACE_KIND_EMISSIVE = 1u;
+CONST_DEF uint SURFACE_KIND_METAL = 2u;
+CONST_DEF uint SURFACE_KIND_ROUGH = 4u;  // rough enough to reconnect (restir/reconnection.h)
+
+// The centre hit h resolved in the current (prev = false) or the previous frame (its object's
+// transform of that frame).
+CentreSurface centre_surface(bool prev, GpuPrimaryHit h) {
+  SurfacePoint sp = primary_surface(h);
+  CentreSurface c;
+  c.valid = false;
+  c.normal = vec3(0.0, 0.0, 1.0);
+  c.depth = h.t;
+  c.kind = 0u;
+  if (sp.instance == SURFACE_NONE) return c;
+  ResolvedSurface r = resolve_surface(prev, sp);
+  if (r.reason != RESOLVE_OK) return c;
+  GpuMaterial m = b_materials[r.hit.material];
+  BsdfParams b = make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular);
+  c.valid = true;
+  c.normal = r.hit.shading_normal;
+  c.kind = (any(greaterThan(m.emission_roughness.rgb, vec3(0.0))) ? SURFACE_KIND_EMISSIVE : 0u) |
+           (m.base_color_metallic.a >= 0.5 ? SURFACE_KIND_METAL : 0u) |
+           (rough_vertex(b.alpha, max(b.f0.r, max(b.f0.g, b.f0.b))) ? SURFACE_KIND_ROUGH : 0u);
+  return c;
+}
+
+// The filter: same kind, normals within 25 degrees, distances within 10% (restir/thresholds.h
+// SPATIAL_*; the similarity test of Bitterli et al. 2020, section 6.1).
+bool similar_surface(CentreSurface c, CentreSurface n) {
+  return n.valid && n.kind == c.kind && dot(c.normal, n.normal) >= SPATIAL_MIN_NORMAL_COS &&
+         abs(n.depth - c.depth) <= SPATIAL_MAX_DEPTH_RELATIVE * c.depth;
+}
+
+#endif
