@@ -30,11 +30,16 @@
 #define BINDING_SPLAT_LIST 24      // the splat records, grouped by the current pixel they landed in
 #define BINDING_PRIMARY 25         // the visibility buffer (GpuPrimaryHit per pixel) of this frame
 #define BINDING_PRIMARY_PREV 26    // ... and of the previous frame
+// The spatial stage's pixels without history, run apart in a dense list (restir_spatial.comp):
+#define BINDING_SPATIAL_LIST 27    // pixel indices
+#define BINDING_SPATIAL_ARGS 28    // VkDispatchIndirectCommand (workgroups) and the list's length
 
 // Specialization constants of the passes (constant_id).
 #define SPEC_THIN_LENS 0
 #define SPEC_ENV_NEE 1
 #define SPEC_EMITTERS 2
 #define SPEC_MOTION_BLUR 3
+#define SPEC_SPATIAL_LIST 4     // restir_spatial.comp: this dispatch runs the list of pixels without history
+#define SPEC_SPATIAL_COMPACT 5  // restir_spatial.comp: pixels without history go to that list
 
 #endif

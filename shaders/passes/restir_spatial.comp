@@ -22,6 +22,16 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(set = 0, binding = BINDING_RESERVOIRS_IN, std430) readonly buffer ReservoirsIn { PackedReservoir b_in[]; };
 layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
+// Pixels without history take disocclusion_spatial_neighbors. Run among the others, one such pixel
+// holds up every lane of its SIMD group for its extra neighbours (lavapipe runs 8 pixels in
+// lock-step, a GPU 32), so with k_compact the image dispatch only lists them, and a second,
+// indirect dispatch (k_list) runs the list densely. A pixel's result is the same either way: its
+// random streams are keyed by the pixel.
+layout(constant_id = SPEC_SPATIAL_LIST) const bool k_list = false;
+layout(constant_id = SPEC_SPATIAL_COMPACT) const bool k_compact = false;
+layout(set = 0, binding = BINDING_SPATIAL_LIST, std430) buffer SpatialList { uint b_list[]; };
+// x, y, z: the list dispatch's workgroups (y = z = 1, set by the host); w: the list's length.
+layout(set = 0, binding = BINDING_SPATIAL_ARGS, std430) buffer SpatialArgs { uvec4 b_args; };
 
 uint g_rays = 0u;
 
@@ -29,12 +39,24 @@ float confidence_of(Reservoir r) { return confidence_capped(r.confidence, u_rest
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (k_list) {
+    uint item = gl_WorkGroupID.x * (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + gl_LocalInvocationIndex;
+    if (item >= b_args.w) return;
+    pixel = uvec2(b_list[item] % u_frame.width, b_list[item] / u_frame.width);
+  }
   if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
   uint index = domain_of(pixel, 0u);  // spatial reuse is on the front layer
   Reservoir centre = unpack_reservoir(b_in[index]);
   vec3 f_centre = b_contribution[index].rgb;
   bool centre_valid = reservoir_valid(centre);
   float c_c = confidence_of(centre);
+  bool no_history = centre.confidence < 1.5;
+  if (k_compact && !k_list && no_history && (b_primary[pixel_index(pixel)].flags & PRIMARY_HIT) != 0u) {
+    uint item = atomicAdd(b_args.w, 1u);
+    b_list[item] = pixel_index(pixel);
+    atomicMax(b_args.x, item / (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + 1u);
+    return;
+  }
 
   // Neighbours: uniform in the disk, rounded to pixels, inside the image and not this pixel, and
   // seeing a surface like this pixel's; each slot draws up to RESTIR_SPATIAL_TRIES candidates. A
@@ -50,7 +72,7 @@ void main() {
   // only (backprojection and the neighbour filter), never on a sample, so the choice of domains
   // stays independent of the samples.
   uint wanted = u_restir.spatial_neighbors;
-  if (centre.confidence < 1.5 && u_restir.disocclusion_spatial_neighbors > 0u) wanted = u_restir.disocclusion_spatial_neighbors;
+  if (no_history && u_restir.disocclusion_spatial_neighbors > 0u) wanted = u_restir.disocclusion_spatial_neighbors;
   uint slots = here.valid ? min(wanted, RESTIR_MAX_SPATIAL_NEIGHBORS) : 0u;
   for (uint j = 0u; j < slots; ++j) {
     for (uint t = 0u; t < RESTIR_SPATIAL_TRIES; ++t) {
