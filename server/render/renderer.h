@@ -53,6 +53,9 @@ struct RestirOptions {
   uint32_t direct_strata = 3;
   bool temporal_filter = true;       // gather: the history pixel's centre surface must be like this pixel's
   void validate() const;
+  // Whether the primary stage runs and fills the visibility buffer: the method's domains start at
+  // its hits (MethodSpec::fixed_primary), or a temporal or spatial stage reads it.
+  bool visibility_buffer(bool fixed_primary) const { return fixed_primary || temporal || spatial; }
   // The radius the spatial pass uses for an image `height` pixels high.
   float spatial_radius_pixels(uint32_t height) const { return spatial_radius > 0.0f ? spatial_radius : default_spatial_radius(height); }
 

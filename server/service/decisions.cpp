@@ -111,12 +111,13 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const v1::Ren
                            : "neighbours for pixels whose reservoir holds no history (disoccluded, or the first frame), "
                              "instead of spatial_neighbors"));
   }
+  const bool visibility_buffer = restir_options(eff).visibility_buffer(method.fixed_primary);
   out.push_back(make("direct_strata", asked(req.has_direct_strata(), u(req.direct_strata())), u(eff.direct_strata()),
-                     method.reuse && eff.direct_strata() > 1,
+                     method.reuse && eff.direct_strata() > 1 && visibility_buffer,
                      !method.reuse ? no_reuse + "; pt averages its spp camera samples"
                      : eff.direct_strata() == 1
                          ? "what the camera sees directly comes from each pixel's own camera sample"
-                     : !temporal && !spatial && !method.fixed_primary
+                     : !visibility_buffer
                          ? "no visibility buffer to find the edges of directly seen emission (temporal and spatial reuse are off)"
                          : "pixels next to both emitting and non-emitting neighbours estimate what they see directly with " +
                                u(eff.direct_strata() * eff.direct_strata()) + " stratified camera samples"));

@@ -17,6 +17,9 @@ layout(set = 0, binding = BINDING_PRIMITIVES, std430) readonly buffer Primitives
 layout(set = 0, binding = BINDING_INSTANCES, std430) readonly buffer Instances { GpuInstance b_instances[]; };
 layout(set = 0, binding = BINDING_MATERIALS, std430) readonly buffer Materials { GpuMaterial b_materials[]; };
 
+// Whether a material emits light (the emissive material kind).
+bool material_emits(GpuMaterial m) { return any(greaterThan(m.emission_roughness.rgb, vec3(0.0))); }
+
 // What a ray query reports: enough to reload the hit later (a path sample stores exactly this).
 struct RayHit {
   float t;

@@ -268,7 +268,7 @@ vec3 direct_emission(uvec2 pixel, uint index) {
 bool sees_emission(GpuPrimaryHit h) {
   if ((h.flags & PRIMARY_HIT) == 0u) return luminance(u_frame.environment.rgb) > 0.0;
   GpuPrimitive prim = b_primitives[b_instances[h.instance].primitive_base + h.geometry];
-  return any(greaterThan(b_materials[prim.material].emission_roughness.rgb, vec3(0.0)));
+  return material_emits(b_materials[prim.material]);
 }
 
 bool near_emission_edge(uvec2 pixel) {

@@ -39,7 +39,7 @@ void count_shift(ShiftResult s) {
 struct Backprojection {
   uvec2 q;
   SurfaceHit centre;       // this pixel's centre hit, frame t
-  vec3 centre_before;      // its surface point in frame t-1's render space
+  ResolvedSurface before;  // its surface point in frame t-1 (render space of t-1: the previous camera at the origin)
   bool have_previous;      // q's centre ray hit something in frame t-1
   SurfaceHit previous;     // q's centre hit, frame t-1 (render space of t-1)
 };
@@ -49,11 +49,9 @@ bool backproject(uvec2 pixel, bool previous_centre, out Backprojection b) {
   SurfacePoint centre = primary_surface(b_primary[pixel_index(pixel)]);
   if (centre.instance == SURFACE_NONE) return false;
   b.centre = resolve_surface(false, centre).hit;
-  ResolvedSurface before = resolve_surface(true, centre);
-  if (before.reason != RESOLVE_OK) return false;
-  vec3 p = before.hit.position;  // previous render space: the previous camera at the origin
-  b.centre_before = p;
-  vec3 ndc = camera_ndc(u_frame.prev_camera, p);
+  b.before = resolve_surface(true, centre);
+  if (b.before.reason != RESOLVE_OK) return false;
+  vec3 ndc = camera_ndc(u_frame.prev_camera, b.before.hit.position);
   if (!(ndc.z > 0.0)) return false;
   vec2 s = vec2((ndc.x + 1.0) * 0.5 * float(u_frame.prev_width), (1.0 - ndc.y) * 0.5 * float(u_frame.prev_height));
   if (!(s.x >= 0.0 && s.y >= 0.0 && s.x < float(u_frame.prev_width) && s.y < float(u_frame.prev_height))) return false;
@@ -74,7 +72,8 @@ bool heuristic_valid(Backprojection b, float p_hat_current, float p_hat_previous
   if (!b.have_previous) return false;
   float ratio = p_hat_current / p_hat_previous;
   return b.previous.material == b.centre.material && dot(b.previous.geo_normal, b.centre.geo_normal) > 0.9 &&
-         length(b.previous.position - b.centre_before) < 0.05 * length(b.centre_before) && ratio >= 0.1 && ratio <= 10.0;
+         length(b.previous.position - b.before.hit.position) < 0.05 * length(b.before.hit.position) && ratio >= 0.1 &&
+         ratio <= 10.0;
 }
 
 void main() {
@@ -95,8 +94,7 @@ void main() {
   // pixel's centre surface moved back to frame t-1 (both at their distance from the previous
   // camera): a pixel that was disoccluded has no history, instead of the occluder's.
   if (have_history && (u_restir.flags & RESTIR_TEMPORAL_FILTER) != 0u) {
-    CentreSurface now = centre_surface(true, b_primary[pixel_index(pixel)]);
-    now.depth = length(bp.centre_before);
+    CentreSurface now = surface_of(bp.before, length(bp.before.hit.position));
     if (!similar_surface(now, centre_surface(true, b_primary_prev[q.y * u_frame.prev_width + q.x]))) have_history = false;
   }
   if (have_history) history = unpack_reservoir(b_in[prev_domain_of(q, 0u)]);

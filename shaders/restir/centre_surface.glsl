@@ -19,26 +19,34 @@ CONST_DEF uint SURFACE_KIND_EMISSIVE = 1u;
 CONST_DEF uint SURFACE_KIND_METAL = 2u;
 CONST_DEF uint SURFACE_KIND_ROUGH = 4u;  // rough enough to reconnect (restir/reconnection.h)
 
-// The centre hit h resolved in the current (prev = false) or the previous frame (its object's
-// transform of that frame).
-CentreSurface centre_surface(bool prev, GpuPrimaryHit h) {
-  SurfacePoint sp = primary_surface(h);
+// A resolved surface point seen at distance `depth`.
+CentreSurface surface_of(ResolvedSurface r, float depth) {
   CentreSurface c;
   c.valid = false;
   c.normal = vec3(0.0, 0.0, 1.0);
-  c.depth = h.t;
+  c.depth = depth;
   c.kind = 0u;
-  if (sp.instance == SURFACE_NONE) return c;
-  ResolvedSurface r = resolve_surface(prev, sp);
   if (r.reason != RESOLVE_OK) return c;
   GpuMaterial m = b_materials[r.hit.material];
   BsdfParams b = make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular);
   c.valid = true;
   c.normal = r.hit.shading_normal;
-  c.kind = (any(greaterThan(m.emission_roughness.rgb, vec3(0.0))) ? SURFACE_KIND_EMISSIVE : 0u) |
+  c.kind = (material_emits(m) ? SURFACE_KIND_EMISSIVE : 0u) |
            (m.base_color_metallic.a >= 0.5 ? SURFACE_KIND_METAL : 0u) |
            (rough_vertex(b.alpha, max(b.f0.r, max(b.f0.g, b.f0.b))) ? SURFACE_KIND_ROUGH : 0u);
   return c;
+}
+
+// The centre hit h resolved in the current (prev = false) or the previous frame (its object's
+// transform of that frame), at its distance along the centre ray.
+CentreSurface centre_surface(bool prev, GpuPrimaryHit h) {
+  SurfacePoint sp = primary_surface(h);
+  if (sp.instance == SURFACE_NONE) {
+    ResolvedSurface none;
+    none.reason = RESOLVE_NONE;
+    return surface_of(none, h.t);
+  }
+  return surface_of(resolve_surface(prev, sp), h.t);
 }
 
 // The filter: same kind, normals within 25 degrees, distances within 10% (restir/thresholds.h

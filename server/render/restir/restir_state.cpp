@@ -51,7 +51,7 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
       width(render_settings.width),
       height(render_settings.height),
       domains(uint64_t(render_settings.width) * render_settings.height),
-      primary_stage(method.fixed_primary || render_settings.restir.temporal || render_settings.restir.spatial) {
+      primary_stage(render_settings.restir.visibility_buffer(method.fixed_primary)) {
   const auto& ctx = shared.ctx;
   constants = gpu::Buffer(ctx, sizeof(gpu::GpuRestirConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "restir constants");
   gpu::GpuRestirConstants c = make_constants(settings, spec, primary_stage);
