@@ -33,7 +33,6 @@ struct SurfaceHit {
   vec3 position;        // render space
   vec3 geo_normal;      // unit, front face (counter-clockwise winding in world)
   vec3 shading_normal;  // unit, interpolated, on the geometric normal's side
-  vec2 uv;
   float area;           // render-space triangle area
   uint material;
 };
@@ -96,8 +95,6 @@ SurfaceHit load_hit_with(GpuInstance inst, RayHit h) {
   float nl = length(n);
   s.shading_normal = nl > 0.0 && !isnan(nl) ? n / nl : s.geo_normal;
   if (dot(s.shading_normal, s.geo_normal) < 0.0) s.shading_normal = -s.shading_normal;
-  s.uv = b0 * vec2(v0.position_u.w, v0.normal_v.w) + h.bary.x * vec2(v1.position_u.w, v1.normal_v.w) +
-         h.bary.y * vec2(v2.position_u.w, v2.normal_v.w);
   s.material = prim.material;
   return s;
 }
@@ -200,6 +197,18 @@ bool primary_hit(GpuPrimaryHit p, out RayHit h) {
   h.triangle = p.triangle;
   h.bary = p.bary;
   return (p.flags & PRIMARY_HIT) != 0u;
+}
+
+// The surface of a visibility-buffer entry's hit in the entry's own frame, as load_hit gave it to
+// the primary stage (restir/primary_data.h); meaningful only when the entry has PRIMARY_HIT.
+SurfaceHit primary_surface_hit(GpuPrimaryHit p) {
+  SurfaceHit s;
+  s.position = p.position_area.xyz;
+  s.area = p.position_area.w;
+  s.geo_normal = p.geo_normal_material.xyz;
+  s.material = floatBitsToUint(p.geo_normal_material.w);
+  s.shading_normal = p.shading_normal_kind.xyz;
+  return s;
 }
 
 // The surface point of a visibility-buffer entry (restir/primary_data.h).

@@ -15,6 +15,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "include/bindings.h"
 #include "include/frame_data.h"
 #include "include/scene_bridge.glsl"
+#include "restir/centre_surface.glsl"
 
 layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
 layout(set = 0, binding = BINDING_PRIMARY, std430) writeonly buffer Primary { GpuPrimaryHit b_primary[]; };
@@ -52,6 +53,9 @@ void main() {
   p.jitter = cs.jitter;
   p.lens = packUnorm2x16(cs.lens);
   p.time = cs.time;
+  p.position_area = vec4(0.0);
+  p.geo_normal_material = vec4(0.0);
+  p.shading_normal_kind = vec4(0.0);
   if (trace_closest(origin, dir, 1e30, h)) {
     p.t = h.t;
     p.instance = h.instance;
@@ -60,6 +64,11 @@ void main() {
     p.bary = h.bary;
     p.lod = b_instances[h.instance].lod;
     p.flags = PRIMARY_HIT;
+    // Its surface in this frame, so that no later stage loads it from the mesh again.
+    SurfaceHit s = load_hit(h);
+    p.position_area = vec4(s.position, s.area);
+    p.geo_normal_material = vec4(s.geo_normal, uintBitsToFloat(s.material));
+    p.shading_normal_kind = vec4(s.shading_normal, uintBitsToFloat(surface_kind(b_materials[s.material])));
   }
   b_primary[index] = p;
 }

@@ -29,6 +29,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "restir/path_space.glsl"
 #include "sampling/light_sampling.glsl"
 #include "restir/restir_limits.h"
+#include "restir/centre_surface.glsl"
 
 
 layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
@@ -86,7 +87,7 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
     g_primary_emission += u_frame.environment.rgb / n_init;  // one segment: not resampled
     return;
   }
-  Vertex v = load_vertex(false, h, dir);
+  Vertex v = domain_primary ? make_vertex(primary_surface_hit(ph), h, ph.lod, dir) : load_vertex(false, h, dir);
   y.x1 = v.point;
   g_primary_emission += v.emission / n_init;  // one segment: not resampled
   float camera_distance = length(v.position);
@@ -267,8 +268,7 @@ vec3 direct_emission(uvec2 pixel, uint index) {
 // camera sample, so the choice below leaves either estimate of the pixel unbiased.
 bool sees_emission(GpuPrimaryHit h) {
   if ((h.flags & PRIMARY_HIT) == 0u) return luminance(u_frame.environment.rgb) > 0.0;
-  GpuPrimitive prim = b_primitives[b_instances[h.instance].primitive_base + h.geometry];
-  return material_emits(b_materials[prim.material]);
+  return (floatBitsToUint(h.shading_normal_kind.w) & SURFACE_KIND_EMISSIVE) != 0u;
 }
 
 bool near_emission_edge(uvec2 pixel) {

@@ -62,7 +62,7 @@ void main() {
   // seeing a surface like this pixel's; each slot draws up to RESTIR_SPATIAL_TRIES candidates. A
   // pixel that sees no surface has no path to reuse into and takes no neighbours.
   Rng rng = rng_init(pixel_index(pixel), 0x5A71A1u, u_frame.frame_index, u_frame.seed);
-  CentreSurface here = centre_surface(false, b_primary[pixel_index(pixel)]);
+  CentreSurface here = centre_surface(b_primary[pixel_index(pixel)]);
   uint count = 0u;
   uint filtered = 0u;
   uint nb[RESTIR_MAX_SPATIAL_NEIGHBORS];
@@ -79,7 +79,7 @@ void main() {
       vec2 o = sample_concentric_disk(rng_next_float2(rng)) * u_restir.spatial_radius;
       ivec2 p = ivec2(pixel) + ivec2(round(o));
       if (p.x < 0 || p.y < 0 || p.x >= int(u_frame.width) || p.y >= int(u_frame.height) || p == ivec2(pixel)) continue;
-      if (!similar_surface(here, centre_surface(false, b_primary[pixel_index(uvec2(p))]))) {
+      if (!similar_surface(here, centre_surface(b_primary[pixel_index(uvec2(p))]))) {
         filtered++;
         continue;
       }

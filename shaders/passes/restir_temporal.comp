@@ -46,9 +46,10 @@ struct Backprojection {
 
 bool backproject(uvec2 pixel, bool previous_centre, out Backprojection b) {
   b.have_previous = false;
-  SurfacePoint centre = primary_surface(b_primary[pixel_index(pixel)]);
+  GpuPrimaryHit entry = b_primary[pixel_index(pixel)];
+  SurfacePoint centre = primary_surface(entry);
   if (centre.instance == SURFACE_NONE) return false;
-  b.centre = resolve_surface(false, centre).hit;
+  b.centre = primary_surface_hit(entry);
   b.before = resolve_surface(true, centre);
   if (b.before.reason != RESOLVE_OK) return false;
   vec3 ndc = camera_ndc(u_frame.prev_camera, b.before.hit.position);
@@ -57,9 +58,9 @@ bool backproject(uvec2 pixel, bool previous_centre, out Backprojection b) {
   if (!(s.x >= 0.0 && s.y >= 0.0 && s.x < float(u_frame.prev_width) && s.y < float(u_frame.prev_height))) return false;
   b.q = uvec2(s);
   if (previous_centre) {
-    SurfacePoint q_centre = primary_surface(b_primary_prev[b.q.y * u_frame.prev_width + b.q.x]);
-    b.have_previous = q_centre.instance != SURFACE_NONE;
-    if (b.have_previous) b.previous = resolve_surface(true, q_centre).hit;
+    GpuPrimaryHit q_entry = b_primary_prev[b.q.y * u_frame.prev_width + b.q.x];
+    b.have_previous = (q_entry.flags & PRIMARY_HIT) != 0u;
+    if (b.have_previous) b.previous = primary_surface_hit(q_entry);
   }
   return true;
 }
@@ -95,7 +96,7 @@ void main() {
   // camera): a pixel that was disoccluded has no history, instead of the occluder's.
   if (have_history && (u_restir.flags & RESTIR_TEMPORAL_FILTER) != 0u) {
     CentreSurface now = surface_of(bp.before, length(bp.before.hit.position));
-    if (!similar_surface(now, centre_surface(true, b_primary_prev[q.y * u_frame.prev_width + q.x]))) have_history = false;
+    if (!similar_surface(now, centre_surface(b_primary_prev[q.y * u_frame.prev_width + q.x]))) have_history = false;
   }
   if (have_history) history = unpack_reservoir(b_in[prev_domain_of(q, 0u)]);
   if (!have_history || !(history.confidence > 0.0)) {

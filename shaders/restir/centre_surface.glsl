@@ -5,6 +5,7 @@
 #ifndef STRATA_CENTRE_SURFACE_GLSL
 #define STRATA_CENTRE_SURFACE_GLSL
 
+#include "material/bsdf.h"
 #include "restir/reconnection.h"
 #include "restir/thresholds.h"
 
@@ -19,34 +20,41 @@ CONST_DEF uint SURFACE_KIND_EMISSIVE = 1u;
 CONST_DEF uint SURFACE_KIND_METAL = 2u;
 CONST_DEF uint SURFACE_KIND_ROUGH = 4u;  // rough enough to reconnect (restir/reconnection.h)
 
-// A resolved surface point seen at distance `depth`.
-CentreSurface surface_of(ResolvedSurface r, float depth) {
+// The SURFACE_KIND_* bits of a material (the primary stage stores them with each hit).
+uint surface_kind(GpuMaterial m) {
+  BsdfParams b = make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular);
+  return (material_emits(m) ? SURFACE_KIND_EMISSIVE : 0u) | (m.base_color_metallic.a >= 0.5 ? SURFACE_KIND_METAL : 0u) |
+         (rough_vertex(b.alpha, max(b.f0.r, max(b.f0.g, b.f0.b))) ? SURFACE_KIND_ROUGH : 0u);
+}
+
+CentreSurface no_centre_surface(float depth) {
   CentreSurface c;
   c.valid = false;
   c.normal = vec3(0.0, 0.0, 1.0);
   c.depth = depth;
   c.kind = 0u;
-  if (r.reason != RESOLVE_OK) return c;
-  GpuMaterial m = b_materials[r.hit.material];
-  BsdfParams b = make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular);
-  c.valid = true;
-  c.normal = r.hit.shading_normal;
-  c.kind = (material_emits(m) ? SURFACE_KIND_EMISSIVE : 0u) |
-           (m.base_color_metallic.a >= 0.5 ? SURFACE_KIND_METAL : 0u) |
-           (rough_vertex(b.alpha, max(b.f0.r, max(b.f0.g, b.f0.b))) ? SURFACE_KIND_ROUGH : 0u);
   return c;
 }
 
-// The centre hit h resolved in the current (prev = false) or the previous frame (its object's
-// transform of that frame), at its distance along the centre ray.
-CentreSurface centre_surface(bool prev, GpuPrimaryHit h) {
-  SurfacePoint sp = primary_surface(h);
-  if (sp.instance == SURFACE_NONE) {
-    ResolvedSurface none;
-    none.reason = RESOLVE_NONE;
-    return surface_of(none, h.t);
-  }
-  return surface_of(resolve_surface(prev, sp), h.t);
+// A resolved surface point seen at distance `depth`.
+CentreSurface surface_of(ResolvedSurface r, float depth) {
+  CentreSurface c = no_centre_surface(depth);
+  if (r.reason != RESOLVE_OK) return c;
+  c.valid = true;
+  c.normal = r.hit.shading_normal;
+  c.kind = surface_kind(b_materials[r.hit.material]);
+  return c;
+}
+
+// The centre hit of a visibility-buffer entry in the entry's own frame, at its distance along the
+// centre ray: what the primary stage stored with it (restir/primary_data.h), so no mesh is read.
+CentreSurface centre_surface(GpuPrimaryHit h) {
+  CentreSurface c = no_centre_surface(h.t);
+  if ((h.flags & PRIMARY_HIT) == 0u) return c;
+  c.valid = true;
+  c.normal = h.shading_normal_kind.xyz;
+  c.kind = floatBitsToUint(h.shading_normal_kind.w);
+  return c;
 }
 
 // The filter: same kind, normals within 25 degrees, distances within 10% (restir/thresholds.h

@@ -229,8 +229,9 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
     bool path_end = k == 0u && j == n - 1u;  // this segment must find the path's last vertex
     RayHit h;
     bool found;
-    if (j == 0u && dp.is_fixed) {
-      found = primary_hit(dp.hit, h);  // the domain's primary vertex y_1
+    bool fixed_vertex = j == 0u && dp.is_fixed;
+    if (fixed_vertex) {
+      found = primary_hit(dp.hit, h);  // the domain's primary vertex y_1, loaded by the primary stage
     } else {
       r.rays++;
       found = trace_closest_in(prev, origin, dir, 1e30, h);
@@ -243,7 +244,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
       break;
     }
     if (path_end && escaped) return shift_fail(r, j == 0u ? SHIFT_FAIL_PRIMARY : SHIFT_FAIL_REPLAY);
-    Vertex w = load_vertex(prev, h, dir);
+    Vertex w = fixed_vertex ? make_vertex(primary_surface_hit(dp.hit), h, dp.hit.lod, dir) : load_vertex(prev, h, dir);
     if (j == 0u) {
       r.x1 = w.point;
       camera_distance = length(w.position);

@@ -5,7 +5,16 @@
 // PRIMARY_DOMAIN, the pixel's camera sample of this frame, which fixes the primary vertex of the
 // pixel's domain (the gather methods: docs/ARCHITECTURE.md, "Domains and their primary vertex").
 // Temporal gather, splatting, the spatial filter and the disocclusion mask read it instead of
-// tracing that ray again. 48 bytes.
+// tracing that ray again.
+//
+// With the hit, the entry keeps its surface as the scene bridge loads it in the entry's frame
+// (position, normals, area, material: scene_bridge.glsl, SurfaceHit) and the material's kind
+// (restir/centre_surface.glsl). Every reuse stage reads a pixel's primary vertex many times (each
+// shift into the domain, each neighbour the spatial filter looks at, the temporal filter's previous
+// pixel), and loading it from the mesh (instance, primitive, three vertices, transforms) costs
+// several times more than these 48 bytes on lavapipe, where a per-pixel load is a gather. The previous
+// frame's entries hold the previous frame's surfaces, which is what the previous frame's instance
+// records would give. 96 bytes.
 #ifndef STRATA_PRIMARY_DATA_H
 #define STRATA_PRIMARY_DATA_H
 #include "include/lang.h"
@@ -25,11 +34,15 @@ struct GpuPrimaryHit {
   vec2 jitter;     // the camera sample: subpixel position in [0,1)^2 (box filter),
   uint lens;       // lens sample as unorm16 x 2 (packUnorm2x16, as a path sample keeps it),
   float time;      // and shutter time in [0,1)
+  // The hit's surface in the entry's frame (zero without a hit), for primary_surface_hit():
+  vec4 position_area;        // render-space position, triangle area
+  vec4 geo_normal_material;  // geometric normal, material index (its bits)
+  vec4 shading_normal_kind;  // shading normal, SURFACE_KIND_* bits of the material (their bits)
 };
 
 STRATA_NAMESPACE_END
 
 #ifdef __cplusplus
-static_assert(sizeof(strata::gpu::GpuPrimaryHit) == 48);
+static_assert(sizeof(strata::gpu::GpuPrimaryHit) == 96);
 #endif
 #endif
