@@ -156,7 +156,8 @@ PathSample shifted_sample(PathSample y, ShiftResult s) {
 // Cornell box failed so, each a path that could never be reused and whose history went dark). So a
 // blocked ray is traced once more for its closest hit, and counts as visible when that hit is x_k's
 // own mesh part within RECONNECT_SELF_TOLERANCE of the distance (restir/thresholds.h). Both
-// queries go through the single call site of trace_query_in.
+// queries go through the single call site of trace_query_in. A blocking hit that the first query
+// reports short of that band settles it without the second: the closest hit lies no farther.
 bool reconnection_visible(bool prev, Vertex v, vec3 d, float dist, bool to_environment, SurfacePoint xk, INOUT(uint) rays) {
   for (uint attempt = 0u; attempt < 2u; ++attempt) {
     bool any_hit = attempt == 0u;
@@ -166,7 +167,7 @@ bool reconnection_visible(bool prev, Vertex v, vec3 d, float dist, bool to_envir
     bool hit = trace_query_in(prev, spawn(v), d, t_max, any_hit, h);
     if (any_hit) {
       if (!hit) return true;
-      if (to_environment) return false;
+      if (to_environment || h.t < dist * (1.0 - RECONNECT_SELF_TOLERANCE)) return false;
     } else {
       return hit && h.instance == xk.instance && h.geometry == xk.geometry && h.t >= dist * (1.0 - RECONNECT_SELF_TOLERANCE);
     }
