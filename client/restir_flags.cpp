@@ -13,6 +13,8 @@ void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
                   "ReSTIR path suffixes when the scene changed: auto | replay | cached (biased) | fail (default: the server's, auto)")
       ->check(CLI::IsMember({"auto", "replay", "cached", "fail"}));
   cmd->add_option("--confidence-cap", r.confidence_cap, "ReSTIR confidence cap of the temporal history (1..1000; default 4)");
+  cmd->add_option("--still-confidence-cap", r.still_confidence_cap,
+                  "ReSTIR gather: confidence cap where nothing moved, the camera and the instance a pixel sees (1..1000; 0: --confidence-cap; default 8)");
   cmd->add_option("--spatial-neighbors", r.spatial_neighbors, "ReSTIR spatial neighbours per pixel (0..8; default 2)");
   cmd->add_option("--spatial-radius", r.spatial_radius, "ReSTIR spatial radius in pixels (1..256; default 2.5% of the image height, at least 4)");
   cmd->add_option("--initial-candidates", r.initial_candidates, "ReSTIR candidate paths per pixel (1..64; default 1)");
@@ -40,6 +42,7 @@ std::string restir_flags_text(const RestirFlags& r) {
   if (!r.mis.empty()) add("--mis", r.mis);
   if (!r.suffix.empty()) add("--suffix", r.suffix);
   if (r.confidence_cap) add("--confidence-cap", num(*r.confidence_cap));
+  if (r.still_confidence_cap) add("--still-confidence-cap", num(*r.still_confidence_cap));
   if (r.spatial_neighbors) add("--spatial-neighbors", std::to_string(*r.spatial_neighbors));
   if (r.spatial_radius) add("--spatial-radius", num(*r.spatial_radius));
   if (r.initial_candidates) add("--initial-candidates", std::to_string(*r.initial_candidates));
@@ -66,6 +69,7 @@ void set_restir_options(const RestirFlags& r, v1::RenderOptions& o) {
   else if (r.suffix == "fail") o.set_suffix(v1::SUFFIX_FAIL);
   else if (!r.suffix.empty()) throw std::runtime_error("--suffix: '" + r.suffix + "' is not one of auto, replay, cached, fail");
   if (r.confidence_cap) o.set_confidence_cap(*r.confidence_cap);
+  if (r.still_confidence_cap) o.set_still_confidence_cap(*r.still_confidence_cap);
   if (r.spatial_neighbors) o.set_spatial_neighbors(*r.spatial_neighbors);
   if (r.spatial_radius) o.set_spatial_radius(*r.spatial_radius);
   if (r.initial_candidates) o.set_initial_candidates(*r.initial_candidates);

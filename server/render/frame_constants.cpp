@@ -77,6 +77,7 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
     c.history_flags = gpu::HISTORY_VALID;
     if (scene.moved_since_previous()) c.history_flags |= gpu::HISTORY_SCENE_MOVED;
     if (scene.lights_reselected()) c.history_flags |= gpu::HISTORY_LIGHTS_RESELECTED;
+    if (frame.camera == prev.camera && frame.camera_open == prev.camera_open) c.history_flags |= gpu::HISTORY_CAMERA_STILL;
   }
   return c;
 }

@@ -56,6 +56,10 @@ void RestirOptions::validate() const {
   require(std::isfinite(confidence_cap) && confidence_cap >= RESTIR_MIN_CONFIDENCE_CAP && confidence_cap <= RESTIR_MAX_CONFIDENCE_CAP,
           "restir.confidence_cap = " + std::to_string(confidence_cap) + " is outside " +
               range(RESTIR_MIN_CONFIDENCE_CAP, RESTIR_MAX_CONFIDENCE_CAP));
+  require(std::isfinite(still_confidence_cap) &&
+              (still_confidence_cap == 0.0f || (still_confidence_cap >= RESTIR_MIN_CONFIDENCE_CAP && still_confidence_cap <= RESTIR_MAX_CONFIDENCE_CAP)),
+          "restir.still_confidence_cap = " + std::to_string(still_confidence_cap) + " is outside " +
+              range(RESTIR_MIN_CONFIDENCE_CAP, RESTIR_MAX_CONFIDENCE_CAP) + " (0 = confidence_cap)");
   require(spatial_neighbors <= RESTIR_MAX_SPATIAL_NEIGHBORS,
           "restir.spatial_neighbors = " + std::to_string(spatial_neighbors) + " is outside " + range(0u, RESTIR_MAX_SPATIAL_NEIGHBORS));
   require(spatial_radius == 0.0f ||

@@ -52,6 +52,11 @@ struct RestirOptions {
   // with G x G stratified camera samples (restir_initial.comp); 1: the domain's camera sample only.
   uint32_t direct_strata = 3;
   bool temporal_filter = true;       // gather: the history pixel's centre surface must be like this pixel's
+  // Gather: the confidence cap of a pixel where nothing moved since the previous frame (the camera,
+  // and the instance its primary vertex lies on); 0: confidence_cap. Chosen by measurement:
+  // docs/BENCHMARKS.md, "What the reuse passes spend besides rays".
+  float still_confidence_cap = 8.0f;
+  float still_cap() const { return still_confidence_cap > 0.0f ? still_confidence_cap : confidence_cap; }
   void validate() const;
   // Whether the primary stage runs and fills the visibility buffer: the method's domains start at
   // its hits (MethodSpec::fixed_primary), or a temporal or spatial stage reads it.

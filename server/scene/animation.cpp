@@ -29,7 +29,16 @@ bool find_segment(const std::vector<Key>& keys, float time, size_t& index, float
   return true;
 }
 
+// Between two equal keys the value is the key itself, exactly: a(1 - w) + a w is not a in floating
+// point, and a still camera or object must stay bit-identical from frame to frame (change tracking
+// and HISTORY_CAMERA_STILL compare exactly).
+template <class T>
+T mix_keys(const T& a, const T& b, float weight) {
+  return a == b ? a : glm::mix(a, b, weight);
+}
+
 glm::quat slerp_unit(const glm::quat& a, const glm::quat& b, float weight) {
+  if (a == b) return a;
   // glm::slerp takes the shorter arc; for nearly equal rotations it falls back to an
   // unnormalised lerp, hence the normalisation.
   return glm::normalize(glm::slerp(a, b, weight));
@@ -43,7 +52,7 @@ CameraKey sample_camera(const std::vector<CameraKey>& keys, float time) {
   if (!find_segment(keys, time, i, w)) return keys[i];
   CameraKey out;
   out.time = time;
-  out.position = glm::mix(keys[i].position, keys[i + 1].position, w);
+  out.position = mix_keys(keys[i].position, keys[i + 1].position, w);
   out.orientation = slerp_unit(keys[i].orientation, keys[i + 1].orientation, w);
   return out;
 }
@@ -54,9 +63,9 @@ TransformKey sample_transform(const std::vector<TransformKey>& keys, float time)
   if (!find_segment(keys, time, i, w)) return keys[i];
   TransformKey out;
   out.time = time;
-  out.translation = glm::mix(keys[i].translation, keys[i + 1].translation, w);
+  out.translation = mix_keys(keys[i].translation, keys[i + 1].translation, w);
   out.rotation = slerp_unit(keys[i].rotation, keys[i + 1].rotation, w);
-  out.scale = glm::mix(keys[i].scale, keys[i + 1].scale, w);
+  out.scale = mix_keys(keys[i].scale, keys[i + 1].scale, w);
   return out;
 }
 

@@ -82,6 +82,18 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const v1::Ren
   out.push_back(make("confidence_cap", asked(req.has_confidence_cap(), format_float(req.confidence_cap())),
                      format_float(eff.confidence_cap()), temporal,
                      !method.reuse ? no_reuse : temporal ? "temporal confidence is clamped to this" : no_temporal));
+  {
+    const float still = eff.still_confidence_cap() > 0.0f ? eff.still_confidence_cap() : eff.confidence_cap();
+    out.push_back(make("still_confidence_cap", asked(req.has_still_confidence_cap(), format_float(req.still_confidence_cap())),
+                       format_float(eff.still_confidence_cap()), temporal && method.fixed_primary,
+                       !method.reuse ? no_reuse
+                       : !temporal   ? no_temporal
+                       : !method.fixed_primary
+                           ? "the splat methods cap with confidence_cap everywhere"
+                           : "confidence is clamped to " + format_float(still) +
+                                 " where nothing moved since the previous frame (the camera, and the instance the pixel sees), "
+                                 "to confidence_cap elsewhere"));
+  }
   out.push_back(make("spatial_neighbors", asked(req.has_spatial_neighbors(), u(req.spatial_neighbors())),
                      u(eff.spatial_neighbors()), method.reuse && eff.spatial_reuse(),
                      !method.reuse ? no_reuse

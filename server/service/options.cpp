@@ -50,6 +50,9 @@ void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, cons
   // The ranges of shaders/restir/restir_limits.h, which render::RestirOptions::validate checks too.
   using namespace gpu;
   check_float(o.has_confidence_cap(), o.confidence_cap(), RESTIR_MIN_CONFIDENCE_CAP, RESTIR_MAX_CONFIDENCE_CAP, p + "confidence_cap");
+  if (o.has_still_confidence_cap() && o.still_confidence_cap() != 0.0f)
+    check_float(true, o.still_confidence_cap(), RESTIR_MIN_CONFIDENCE_CAP, RESTIR_MAX_CONFIDENCE_CAP, p + "still_confidence_cap",
+                "(0 = confidence_cap)");
   check_range(o.has_spatial_neighbors(), o.spatial_neighbors(), 0, RESTIR_MAX_SPATIAL_NEIGHBORS, p + "spatial_neighbors");
   check_float(o.has_spatial_radius(), o.spatial_radius(), RESTIR_MIN_SPATIAL_RADIUS, RESTIR_MAX_SPATIAL_RADIUS, p + "spatial_radius",
               "pixels");
@@ -78,6 +81,7 @@ render::RestirOptions restir_options(const v1::RenderOptions& e) {
   r.temporal = e.temporal_reuse();
   r.spatial = e.spatial_reuse();
   r.confidence_cap = e.confidence_cap();
+  r.still_confidence_cap = e.still_confidence_cap();
   r.spatial_neighbors = e.spatial_neighbors();
   r.spatial_radius = e.spatial_radius();
   r.initial_candidates = e.initial_candidates();
@@ -108,6 +112,7 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const Servic
   // The ReSTIR defaults are render::RestirOptions'.
   const render::RestirOptions restir;
   o.set_confidence_cap(restir.confidence_cap);
+  o.set_still_confidence_cap(restir.still_confidence_cap);
   o.set_spatial_neighbors(restir.spatial_neighbors);
   o.set_spatial_radius(restir.spatial_radius_pixels(height));
   o.set_initial_candidates(restir.initial_candidates);

@@ -34,6 +34,7 @@ std::vector<std::string> restir_changes(const render::RestirOptions& a, const re
   field("temporal_reuse", a.temporal, b.temporal);
   field("spatial_reuse", a.spatial, b.spatial);
   field("confidence_cap", a.confidence_cap, b.confidence_cap);
+  field("still_confidence_cap", a.still_confidence_cap, b.still_confidence_cap);
   field("spatial_neighbors", a.spatial_neighbors, b.spatial_neighbors);
   field("spatial_radius", a.spatial_radius, b.spatial_radius);
   field("initial_candidates", a.initial_candidates, b.initial_candidates);

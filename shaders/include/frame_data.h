@@ -57,6 +57,7 @@ CONST_DEF uint HISTORY_VALID = 1u;         // a previous frame exists (TLAS, ins
 CONST_DEF uint HISTORY_SCENE_MOVED = 2u;   // some instance changed since then (INSTANCE_CHANGED_* says which)
 CONST_DEF uint HISTORY_LIGHTS_RESELECTED = 4u;  // light selection (emitter table or environment share) differs:
                                                 // the same random numbers choose another light in each frame
+CONST_DEF uint HISTORY_CAMERA_STILL = 8u;  // the camera (and its shutter) is the previous frame's
 
 // primary_mode: which camera ray the primary stage traces per pixel (restir/primary_data.h).
 CONST_DEF uint PRIMARY_CENTRE = 0u;  // through the pixel centre and the lens centre, at the frame's instant

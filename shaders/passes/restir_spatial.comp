@@ -35,7 +35,11 @@ layout(set = 0, binding = BINDING_SPATIAL_ARGS, std430) buffer SpatialArgs { uve
 
 uint g_rays = 0u;
 
-float confidence_of(Reservoir r) { return confidence_capped(r.confidence, u_restir.confidence_cap); }
+// The capped confidence of reservoir r of domain `domain` (this frame; restir_pass.glsl).
+float confidence_of(Reservoir r, uint domain) {
+  return confidence_capped(r.confidence, confidence_cap_of(b_primary[pixel_index(domain_pixel(domain, u_frame.width))]));
+}
+
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
@@ -49,7 +53,7 @@ void main() {
   Reservoir centre = unpack_reservoir(b_in[index]);
   vec3 f_centre = b_contribution[index].rgb;
   bool centre_valid = reservoir_valid(centre);
-  float c_c = confidence_of(centre);
+  float c_c = confidence_capped(centre.confidence, confidence_cap_of(b_primary[pixel_index(pixel)]));
   bool no_history = centre.confidence < 1.5;
   if (k_compact && !k_list && no_history && (b_primary[pixel_index(pixel)].flags & PRIMARY_HIT) != 0u) {
     uint item = atomicAdd(b_args.w, 1u);
@@ -84,7 +88,7 @@ void main() {
         continue;
       }
       nb[count] = domain_of(uvec2(p), 0u);
-      c_total += confidence_of(unpack_reservoir(b_in[nb[count]]));
+      c_total += confidence_of(unpack_reservoir(b_in[nb[count]]), nb[count]);
       count++;
       break;
     }
@@ -117,7 +121,7 @@ void main() {
     bool centre_job = sub == block - 1u;
     if (sub == 0u) {
       rj = unpack_reservoir(b_in[nb[j]]);
-      rj.confidence = confidence_of(rj);
+      rj.confidence = confidence_of(rj, nb[j]);
       p_here = 0.0;
       jac = 0.0;
     }
@@ -160,7 +164,7 @@ void main() {
     } else if (!centre_job) {
       // Balance: p-hat of domain l from y'_j (RS-main Eq. 7).
       Reservoir rl = unpack_reservoir(b_in[target]);
-      if (ok) denom += confidence_of(rl) * p_hat_from(luminance(res.f), res.jacobian);
+      if (ok) denom += confidence_of(rl, target) * p_hat_from(luminance(res.f), res.jacobian);
     }
     if (centre_job) {
       float from_c = ok ? p_hat_from(luminance(res.f), res.jacobian) : 0.0;

@@ -106,7 +106,7 @@ void main() {
   }
   bool moved = (u_frame.history_flags & HISTORY_SCENE_MOVED) != 0u;
   float c_c = canonical.confidence;
-  float c_h = confidence_capped(history.confidence, u_restir.confidence_cap);  // RS-main 3.4
+  float c_h = confidence_capped(history.confidence, confidence_cap_of(b_primary[pixel_index(pixel)]));  // RS-main 3.4
 
   // Both shifts run through one call site (lavapipe compiles each inlined call separately):
   // job 0, the history sample into this pixel (frame t); job 1, the canonical sample back into q

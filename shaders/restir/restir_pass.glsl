@@ -55,6 +55,17 @@ Reservoir reservoir_empty() {
   return r;
 }
 
+// The confidence cap of the domain whose primary vertex is visibility-buffer entry `e` of this frame
+// (RS-main 3.4; docs/ARCHITECTURE.md, "Confidence cap"): still_confidence_cap where nothing the
+// domain's history depends on moved since the previous frame (the camera, and the instance its
+// primary vertex lies on), else confidence_cap. It reads geometry only, so like any confidence
+// weights it leaves the MIS weights unbiased. (The host sets both caps equal for the splat methods.)
+float confidence_cap_of(GpuPrimaryHit e) {
+  bool still = (u_frame.history_flags & HISTORY_CAMERA_STILL) != 0u && (e.flags & PRIMARY_HIT) != 0u &&
+               instance_changes(e.instance) == 0u;
+  return still ? u_restir.still_confidence_cap : u_restir.confidence_cap;
+}
+
 bool reservoir_valid(Reservoir r) { return (r.y.flags & SAMPLE_VALID) != 0u && r.ucw > 0.0 && r.p_hat > 0.0; }
 
 // Writes the pass's output reservoir, f(Y) and the domain's estimate over the pass's candidates

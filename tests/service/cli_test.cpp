@@ -100,7 +100,7 @@ TEST(CliTest, StrataStreamSendsRestirOptionsAndLogsReuse) {
   Daemon daemon;
   const auto r = run_process({strata_path(), "stream", "--server", daemon.address(), "--scene", "cornell", "--method",
                               "restir-gather", "--width", "16", "--height", "16", "--frames", "2", "--encodings", "raw",
-                              "--shift", "reconnection", "--mis", "balance", "--confidence-cap", "10", "--spatial-neighbors",
+                              "--shift", "reconnection", "--mis", "balance", "--confidence-cap", "10", "--still-confidence-cap", "12", "--spatial-neighbors",
                               "2", "--spatial-radius", "12", "--initial-candidates", "2", "--light-candidates", "3",
                               "--disocclusion-spatial-neighbors", "5", "--direct-strata", "2", "--no-temporal-filter",
                               "--biased", "--out", (dir.path / "out").string()},
@@ -114,6 +114,7 @@ TEST(CliTest, StrataStreamSendsRestirOptionsAndLogsReuse) {
   EXPECT_EQ(o["shift"], "SHIFT_RECONNECTION");
   EXPECT_EQ(o["mis"], "MIS_BALANCE");
   EXPECT_EQ(o["confidence_cap"], 10.0);
+  EXPECT_EQ(o["still_confidence_cap"], 12.0);
   EXPECT_EQ(o["spatial_neighbors"], 2);
   EXPECT_EQ(o["spatial_radius"], 12.0);
   EXPECT_EQ(o["initial_candidates"], 2);

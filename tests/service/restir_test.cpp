@@ -2,6 +2,7 @@
 // frames carry the reuse statistics (absent for pt), option changes re-create the GPU state and
 // say why, and out-of-range options are INVALID_ARGUMENT naming the field and the limit. Images
 // are tiny (lavapipe).
+#include <algorithm>
 #include <cmath>
 
 #include "harness.h"
@@ -40,7 +41,7 @@ void expect_status(const grpc::Status& st, StatusCode code, const std::string& m
 const char* const k_restir_options[] = {"shift",           "mis",          "unbiased",          "confidence_cap",
                                         "temporal_reuse",  "spatial_reuse", "spatial_neighbors", "spatial_radius",
                                         "initial_candidates", "light_candidates", "disocclusion_spatial_neighbors",
-                                        "direct_strata", "temporal_filter"};
+                                        "direct_strata", "temporal_filter", "still_confidence_cap"};
 
 TEST_F(RestirTest, GatherSessionReportsItsOptionsAndStreamsReuseStatistics) {
   auto req = restir_request("restir-gather");
@@ -53,6 +54,7 @@ TEST_F(RestirTest, GatherSessionReportsItsOptionsAndStreamsReuseStatistics) {
   EXPECT_EQ(s.options().shift(), v1::SHIFT_HYBRID);
   EXPECT_EQ(s.options().mis(), v1::MIS_PAIRWISE);
   EXPECT_FLOAT_EQ(s.options().confidence_cap(), 4.0f);
+  EXPECT_FLOAT_EQ(s.options().still_confidence_cap(), 8.0f);
   EXPECT_EQ(s.options().spatial_neighbors(), 2u);
   // Not requested: from the image height, 2.5% with a floor of 4 px (16 px high: the floor).
   EXPECT_FLOAT_EQ(s.options().spatial_radius(), render::RestirOptions::default_spatial_radius(16));
@@ -222,6 +224,10 @@ TEST_F(RestirTest, BadRestirOptionsAreInvalidArgumentNamingTheField) {
       "options.confidence_cap = 0.5 is outside [1, 1000]");
   add("confidence_cap 1001", "restir-gather", [](auto& o) { o.set_confidence_cap(1001.0f); },
       "options.confidence_cap = 1001 is outside [1, 1000]");
+  add("still_confidence_cap 0.5", "restir-gather", [](auto& o) { o.set_still_confidence_cap(0.5f); },
+      "options.still_confidence_cap = 0.5 is outside [1, 1000] (0 = confidence_cap)");
+  add("still_confidence_cap NaN", "restir-gather", [](auto& o) { o.set_still_confidence_cap(std::nanf("")); },
+      "options.still_confidence_cap = nan is outside [1, 1000]");
   add("shift not an enum value", "restir-gather", [](auto& o) { o.set_shift(static_cast<v1::Shift>(9)); },
       "options.shift = 9 is not one of SHIFT_RECONNECTION, SHIFT_HYBRID");
   add("mis not an enum value", "restir-gather", [](auto& o) { o.set_mis(static_cast<v1::Mis>(5)); },
@@ -236,7 +242,9 @@ TEST_F(RestirTest, BadRestirOptionsAreInvalidArgumentNamingTheField) {
     expect_status(create_session(stub(), c.request, &s), StatusCode::INVALID_ARGUMENT, c.message, c.what);
   }
   v1::Session s;
-  const grpc::Status spp = create_session(stub(), cases[14].request, &s);
+  const auto spp_case = std::find_if(cases.begin(), cases.end(), [](const auto& c) { return c.what == "restir-gather with spp 4"; });
+  ASSERT_NE(spp_case, cases.end());
+  const grpc::Status spp = create_session(stub(), spp_case->request, &s);
   EXPECT_NE(spp.error_message().find("spp must be 1"), std::string::npos) << spp.error_message();
   EXPECT_EQ(server_status(stub()).sessions(), 0u) << "a refused request left a session";
   // pt takes any spp within max_spp.

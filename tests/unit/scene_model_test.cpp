@@ -80,6 +80,26 @@ TEST(SceneFrameState, ClampsOutsideKeysAndHitsKeysExactly) {
   EXPECT_EQ(s.frame_state(500).camera.position, b.position);  // after the last key
 }
 
+// Between equal keys (a still camera or object keyed at both ends, as cornell's camera) every frame
+// is the key bit for bit: interpolating a with itself is not exact in floating point, and the
+// renderer compares frames exactly (change tracking, HISTORY_CAMERA_STILL).
+TEST(SceneFrameState, EqualKeysHoldTheirValueExactly) {
+  Scene s = small_scene();
+  s.animation.frames_per_second = 24.0f;
+  const CameraKey a{0.0f, {0.1f, 1.0f, 3.8f}, glm::normalize(glm::quat(0.9f, 0.1f, 0.3f, 0.2f))};
+  CameraKey b = a;
+  b.time = 5.0f;
+  s.animation.camera = {a, b};
+  s.animation.tracks.push_back({0, {{0.0f, {0.3f, 0.7f, -1.1f}, glm::normalize(glm::quat(0.8f, 0.2f, 0.1f, 0.3f)), {1.3f, 1.3f, 1.3f}},
+                                    {5.0f, {0.3f, 0.7f, -1.1f}, glm::normalize(glm::quat(0.8f, 0.2f, 0.1f, 0.3f)), {1.3f, 1.3f, 1.3f}}}});
+  const FrameState first = s.frame_state(0);
+  for (uint32_t f = 1; f < 120; ++f) {
+    const FrameState state = s.frame_state(f);
+    ASSERT_EQ(state.camera, first.camera) << "frame " << f;
+    ASSERT_EQ(state.transforms, first.transforms) << "frame " << f;
+  }
+}
+
 TEST(SceneFrameState, NoCameraKeysKeepsTheSceneCamera) {
   const Scene s = small_scene();
   EXPECT_EQ(s.frame_state(17).camera, s.camera);
