@@ -114,8 +114,8 @@ TEST_F(SceneHistory, FrameConstantsDescribeThePreviousFrame) {
   EXPECT_EQ(c1.prev_height, 16u);
   EXPECT_EQ(c1.prev_total_emitter_power, c0.total_emitter_power);
   EXPECT_EQ(c1.prev_env_select_prob, c0.env_select_prob);
-  gpu::GpuFrameConstants c2 = update(1);  // the same state again (as when accumulating)
-  EXPECT_EQ(c2.history_flags, gpu::HISTORY_VALID);
+  gpu::GpuFrameConstants c2 = update(1);  // the same state again (as when accumulating): the camera stood still
+  EXPECT_EQ(c2.history_flags, gpu::HISTORY_VALID | gpu::HISTORY_CAMERA_STILL);
   EXPECT_TRUE(same_camera(c2.prev_camera, c1.camera));
 }
 
