@@ -12,7 +12,7 @@
 // (restir/centre_surface.glsl). Every reuse stage reads a pixel's primary vertex many times (each
 // shift into the domain, each neighbour the spatial filter looks at, the temporal filter's previous
 // pixel), and loading it from the mesh (instance, primitive, three vertices, transforms) costs
-// several times more than these 48 bytes on lavapipe, where a per-pixel load is a gather. The previous
+// several times more than reading the entry on lavapipe, where a per-pixel load is a gather. The previous
 // frame's entries hold the previous frame's surfaces, which is what the previous frame's instance
 // records would give. 96 bytes.
 #ifndef STRATA_PRIMARY_DATA_H
