@@ -83,7 +83,7 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const v1::Ren
                      format_float(eff.confidence_cap()), temporal,
                      !method.reuse ? no_reuse : temporal ? "temporal confidence is clamped to this" : no_temporal));
   {
-    const float still = eff.still_confidence_cap() > 0.0f ? eff.still_confidence_cap() : eff.confidence_cap();
+    const float still = restir_options(eff).still_cap();
     out.push_back(make("still_confidence_cap", asked(req.has_still_confidence_cap(), format_float(req.still_confidence_cap())),
                        format_float(eff.still_confidence_cap()), temporal && method.fixed_primary,
                        !method.reuse ? no_reuse

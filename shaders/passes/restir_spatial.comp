@@ -70,6 +70,7 @@ void main() {
   uint count = 0u;
   uint filtered = 0u;
   uint nb[RESTIR_MAX_SPATIAL_NEIGHBORS];
+  float c_nb[RESTIR_MAX_SPATIAL_NEIGHBORS];  // their capped confidences, read once here
   float c_total = c_c;
   // A pixel whose reservoir holds no history (disoccluded, or the first frame: its confidence is the
   // canonical sample's alone) takes disocclusion_spatial_neighbors. Confidence depends on geometry
@@ -88,7 +89,8 @@ void main() {
         continue;
       }
       nb[count] = domain_of(uvec2(p), 0u);
-      c_total += confidence_of(unpack_reservoir(b_in[nb[count]]), nb[count]);
+      c_nb[count] = confidence_of(unpack_reservoir(b_in[nb[count]]), nb[count]);
+      c_total += c_nb[count];
       count++;
       break;
     }
@@ -121,12 +123,13 @@ void main() {
     bool centre_job = sub == block - 1u;
     if (sub == 0u) {
       rj = unpack_reservoir(b_in[nb[j]]);
-      rj.confidence = confidence_of(rj, nb[j]);
+      rj.confidence = c_nb[j];
       p_here = 0.0;
       jac = 0.0;
     }
     // What to shift where; jobs whose input is absent are skipped.
     uint target = nb[j];
+    float c_target = 0.0;  // balance jobs: the confidence of neighbour domain l
     PathSample y = rj.y;
     bool run = reservoir_valid(rj);
     if (centre_job) {
@@ -135,6 +138,7 @@ void main() {
     } else if (sub > 0u) {
       uint l = sub - 1u < j ? sub - 1u : sub;  // the other neighbours, skipping j
       target = nb[l];
+      c_target = c_nb[l];
       y = yj_here;
       run = jac > 0.0;
     } else {
@@ -163,8 +167,7 @@ void main() {
       denom = jac > 0.0 ? c_c * p_here + rj.confidence * rj.p_hat / jac : 0.0;
     } else if (!centre_job) {
       // Balance: p-hat of domain l from y'_j (RS-main Eq. 7).
-      Reservoir rl = unpack_reservoir(b_in[target]);
-      if (ok) denom += confidence_of(rl, target) * p_hat_from(luminance(res.f), res.jacobian);
+      if (ok) denom += c_target * p_hat_from(luminance(res.f), res.jacobian);
     }
     if (centre_job) {
       float from_c = ok ? p_hat_from(luminance(res.f), res.jacobian) : 0.0;
