@@ -18,6 +18,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "restir/restir_pass.glsl"
 #include "restir/path_space.glsl"
 #include "restir/centre_surface.glsl"
+#include "restir/restir_limits.h"
 
 layout(set = 0, binding = BINDING_RESERVOIRS_IN, std430) readonly buffer ReservoirsIn { PackedReservoir b_in[]; };
 layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
@@ -38,11 +39,22 @@ void count_shift(ShiftResult s) {
 // the previous G-buffer sample the DI tutorial validates against, from the previous visibility buffer.
 struct Backprojection {
   uvec2 q;
+  vec2 s;                  // the backprojected position in the previous image (pixels)
   SurfaceHit centre;       // this pixel's centre hit, frame t
   ResolvedSurface before;  // its surface point in frame t-1 (render space of t-1: the previous camera at the origin)
   bool have_previous;      // q's centre ray hit something in frame t-1
   SurfaceHit previous;     // q's centre hit, frame t-1 (render space of t-1)
 };
+
+// The t-th previous pixel tried around the backprojected one (offset from it), nearest first:
+// itself, its neighbours on the sides nearer to the backprojected position (along the nearer axis
+// first), the diagonal between them, then the far sides and corners.
+ivec2 temporal_try_offset(uint t, ivec2 step, bool x_first) {
+  ivec2 a = x_first ? ivec2(step.x, 0) : ivec2(0, step.y);  // the nearer side
+  ivec2 b = x_first ? ivec2(0, step.y) : ivec2(step.x, 0);
+  const ivec2 order[9] = ivec2[9](ivec2(0), a, b, a + b, -a, -b, -a + b, a - b, -a - b);
+  return order[min(t, 8u)];
+}
 
 bool backproject(uvec2 pixel, bool previous_centre, out Backprojection b) {
   b.have_previous = false;
@@ -57,6 +69,7 @@ bool backproject(uvec2 pixel, bool previous_centre, out Backprojection b) {
   vec2 s = vec2((ndc.x + 1.0) * 0.5 * float(u_frame.prev_width), (1.0 - ndc.y) * 0.5 * float(u_frame.prev_height));
   if (!(s.x >= 0.0 && s.y >= 0.0 && s.x < float(u_frame.prev_width) && s.y < float(u_frame.prev_height))) return false;
   b.q = uvec2(s);
+  b.s = s;
   if (previous_centre) {
     GpuPrimaryHit q_entry = b_primary_prev[b.q.y * u_frame.prev_width + b.q.x];
     b.have_previous = (q_entry.flags & PRIMARY_HIT) != 0u;
@@ -94,9 +107,29 @@ void main() {
   // With the history filter, q takes part only when its centre surface in frame t-1 is like this
   // pixel's centre surface moved back to frame t-1 (both at their distance from the previous
   // camera): a pixel that was disoccluded has no history, instead of the occluder's.
+  // When q's centre surface differs (its camera sample of frame t-1 found a blade or an edge that
+  // this pixel's does not), the other previous pixels around the backprojected position are tried,
+  // nearest first (RESTIR_TEMPORAL_TRIES): the first whose centre surface is like this one's is the
+  // history domain. The search reads the visibility buffers only, never a reservoir, so the domain
+  // is still chosen independently of the samples.
   if (have_history && (u_restir.flags & RESTIR_TEMPORAL_FILTER) != 0u) {
     CentreSurface now = surface_of(bp.before, length(bp.before.hit.position));
-    if (!similar_surface(now, centre_surface(b_primary_prev[q.y * u_frame.prev_width + q.x]))) have_history = false;
+    have_history = false;
+    ivec2 step = ivec2(fract(bp.s).x < 0.5 ? -1 : 1, fract(bp.s).y < 0.5 ? -1 : 1);  // towards the nearer neighbours
+    bool x_first = abs(fract(bp.s).x - 0.5) > abs(fract(bp.s).y - 0.5);
+    for (uint t = 0u; t < RESTIR_TEMPORAL_TRIES && !have_history; ++t) {
+      ivec2 c = ivec2(bp.q) + temporal_try_offset(t, step, x_first);
+      if (c.x < 0 || c.y < 0 || c.x >= int(u_frame.prev_width) || c.y >= int(u_frame.prev_height)) continue;
+      if (similar_surface(now, centre_surface(b_primary_prev[uint(c.y) * u_frame.prev_width + uint(c.x)]))) {
+        have_history = true;
+        q = uvec2(c);
+      }
+    }
+    if (have_history && !unbiased) {  // the biased validation compares with the chosen q's centre hit
+      GpuPrimaryHit q_entry = b_primary_prev[q.y * u_frame.prev_width + q.x];
+      bp.have_previous = (q_entry.flags & PRIMARY_HIT) != 0u;
+      if (bp.have_previous) bp.previous = primary_surface_hit(q_entry);
+    }
   }
   if (have_history) history = unpack_reservoir(b_in[prev_domain_of(q, 0u)]);
   if (!have_history || !(history.confidence > 0.0)) {

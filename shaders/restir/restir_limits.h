@@ -17,6 +17,9 @@ CONST_DEF float RESTIR_MIN_SPATIAL_RADIUS = 1.0f;   // pixels
 CONST_DEF float RESTIR_MAX_SPATIAL_RADIUS = 256.0f;
 // Candidates drawn per neighbour slot until one passes the surface filter (restir_spatial.comp).
 CONST_DEF uint RESTIR_SPATIAL_TRIES = 4u;
+// Previous pixels tried, nearest to the backprojected position first, until one's centre surface
+// passes the history filter (restir_temporal.comp): the pixel itself and the rest of its 3 x 3.
+CONST_DEF uint RESTIR_TEMPORAL_TRIES = 9u;
 
 STRATA_NAMESPACE_END
 #endif
