@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job: starts `stratad serve` on 127.0.0.1 (a free port), waits until its health is
-# SERVING, streams the default scene (cornell) with `strata stream` into out/main (frame_NNNN.exr,
-# frame_NNNN.png, frames.json), then stops the server with SIGTERM (graceful drain). Exits non-zero
+# SERVING, streams carousel (objects and the camera move) with the default method (restir-gather,
+# the method that wins at equal time: render::k_default_method) with `strata stream` into out/main
+# (frame_NNNN.exr, frame_NNNN.png, frames.json), then stops the server with SIGTERM (graceful drain). Exits non-zero
 # on any failure. STRATA_BUILD (default build/release) and STRATA_OUT (default out/main) override
 # the build and output folders.
 set -euo pipefail
@@ -47,7 +48,7 @@ address=127.0.0.1:$(cat "$work/port")
 
 mkdir -p "$out"
 rm -f "$out"/frame_*.exr "$out"/frame_*.png "$out"/frames.json
-if ! "$strata" stream --server "$address" --scene cornell --method pt --width 256 --height 256 --spp 4 \
+if ! "$strata" stream --server "$address" --scene carousel --width 256 --height 256 \
     --frames 30 --seed 0 --out "$out"; then
   echo "run-main.sh: strata stream failed; stratad said:" >&2
   cat "$work/stratad.log" >&2
@@ -63,4 +64,4 @@ if [ "$status" -ne 0 ]; then
   echo "run-main.sh: stratad serve exited with status $status after SIGTERM" >&2
   exit 1
 fi
-echo "run-main.sh: 30 frames of cornell, EXR + PNG each, and frames.json in $out"
+echo "run-main.sh: 30 frames of carousel (restir-gather), EXR + PNG each, and frames.json in $out"

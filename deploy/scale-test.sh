@@ -70,7 +70,7 @@ echo "scale-test: 3 daemons (${daemon_addr[*]}) behind HAProxy on $proxy"
 # ---- clients ---------------------------------------------------------------------------------
 declare -A client_pid client_instance
 start_client() {  # id frames
-  "$strata" stream --server "$proxy" --session-id "$1" --width 16 --height 16 --frames "$2" --encodings raw \
+  "$strata" stream --server "$proxy" --session-id "$1" --method pt --width 16 --height 16 --frames "$2" --encodings raw \
     --out "$tmp/$1" --timeout 120 > "$tmp/client-$1.log" 2>&1 &
   client_pid[$1]=$!; pids+=($!)
 }

@@ -23,7 +23,8 @@ std::string u(uint32_t v) { return std::to_string(v); }
 
 }  // namespace
 
-std::vector<v1::Decision> decide(const render::MethodSpec& method, const v1::RenderOptions& req, const v1::RenderOptions& eff,
+std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::string& requested_method,
+                                 const v1::RenderOptions& req, const v1::RenderOptions& eff,
                                  const std::vector<v1::ImageEncoding>& encodings, const v1::SceneAnalysis& scene) {
   std::vector<v1::Decision> out;
   const std::string m = method.name;
@@ -31,7 +32,9 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const v1::Ren
   auto asked = [](bool has, const std::string& value) { return has ? value : std::string(); };
 
   const bool di = method.direct_lighting;
-  out.push_back(make("method", m, m, true, method.summary));
+  out.push_back(make("method", requested_method, m, true,
+                     requested_method.empty() ? std::string(method.summary) + "; " + render::k_default_method_reason
+                                              : std::string(method.summary)));
   out.push_back(make("spp", asked(req.has_spp(), u(req.spp())), u(eff.spp()), true,
                      method.reuse ? "one reservoir per pixel, shaded once per frame (spp must be 1)" : "samples per pixel per frame"));
   out.push_back(make("max_depth", asked(req.has_max_depth(), u(req.max_depth())), u(eff.max_depth()), true,

@@ -65,11 +65,14 @@ void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, cons
   check_float(o.has_exposure(), o.exposure(), -64.0f, 64.0f, p + "exposure");
 }
 
-void check_method_options(const render::MethodSpec& method, const v1::RenderOptions& o, const std::string& field) {
+void check_method_options(const render::MethodSpec& method, const v1::RenderOptions& o, const std::string& field,
+                          bool defaulted) {
   if (method.reuse && o.has_spp() && o.spp() != 1)
     fail_invalid(field + ".spp = " + std::to_string(o.spp()) + " but method " + method.name +
+                 (defaulted ? " (the default: no method was named)" : "") +
                  " keeps one reservoir per pixel and renders 1 sample per pixel per frame (spp must be 1); use " + field +
-                 ".initial_candidates for more candidates per frame");
+                 ".initial_candidates for more candidates per frame" +
+                 (defaulted ? ", or method = \"pt\" for several path-traced samples per pixel" : ""));
 }
 
 render::RestirOptions restir_options(const v1::RenderOptions& e) {

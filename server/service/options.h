@@ -20,8 +20,9 @@ const render::MethodSpec& check_method(const std::string& requested, const std::
 // Range checks of the fields that are set; `field` prefixes the names ("options").
 void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, const std::string& field);
 // What `method` requires of the fields that are set (the restir-* methods render spp = 1); `field`
-// prefixes the names.
-void check_method_options(const render::MethodSpec& method, const v1::RenderOptions& o, const std::string& field);
+// prefixes the names. `defaulted`: the client named no method (the message then says which it got).
+void check_method_options(const render::MethodSpec& method, const v1::RenderOptions& o, const std::string& field,
+                          bool defaulted = false);
 // Every field set: the requested value, else the default (max_depth at most limits.max_depth;
 // spatial_radius from the image `height`, render::RestirOptions::default_spatial_radius).
 v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const ServiceLimits& limits, uint32_t height);
@@ -36,8 +37,10 @@ std::string suffix_name(v1::Suffix s);
 std::string mis_name(v1::Mis m);
 std::string lod_mapping_name(v1::LodMapping m);
 
-// What was enabled and why, from the method, the options and the scene.
-std::vector<v1::Decision> decide(const render::MethodSpec& method, const v1::RenderOptions& requested,
+// What was enabled and why, from the method (`requested_method`: as the client named it, empty for
+// the default), the options and the scene.
+std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::string& requested_method,
+                                 const v1::RenderOptions& requested,
                                  const v1::RenderOptions& effective, const std::vector<v1::ImageEncoding>& encodings,
                                  const v1::SceneAnalysis& scene);
 

@@ -27,10 +27,11 @@ grpc::Status RenderServiceImpl::CreateSession(grpc::ServerContext*, const v1::Cr
     const ServiceLimits& limits = core_.config.limits;
     SessionSpec spec;
     spec.method = &check_method(req->method(), "method");
+    spec.requested_method = req->method();
     if (!req->has_resolution()) fail_invalid("resolution is required (width and height in pixels)");
     check_resolution(req->resolution(), limits, "resolution");
     check_options(req->options(), limits, "options");
-    check_method_options(*spec.method, req->options(), "options");
+    check_method_options(*spec.method, req->options(), "options", req->method().empty());
     spec.requested = req->options();
     spec.options = with_defaults(req->options(), limits, req->resolution().height());
     spec.width = req->resolution().width();

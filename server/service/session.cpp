@@ -71,7 +71,7 @@ Session::Session(std::string name, std::shared_ptr<const scene::Scene> scene, Se
   settings_.max_depth = spec_.options.max_depth();
   settings_.seed = spec_.seed;
   settings_.restir = restir_options(spec_.options);
-  decisions_ = decide(*spec_.method, spec_.requested, spec_.options, spec_.encodings, analysis_);
+  decisions_ = decide(*spec_.method, spec_.requested_method, spec_.requested, spec_.options, spec_.encodings, analysis_);
   frame_state_ = scene_->frame_state(0);
   idle_since_ = created_steady_;
   std::lock_guard lock(render_mu_);
@@ -192,7 +192,7 @@ void Session::apply_locked(const PendingInput& input, std::string& reset_reason)
     spec_.width = settings_.width;
     spec_.height = settings_.height;
     if (!input.encodings.empty()) spec_.encodings = input.encodings;
-    if (options_changed) decisions_ = decide(*spec_.method, spec_.requested, spec_.options, spec_.encodings, analysis_);
+    if (options_changed) decisions_ = decide(*spec_.method, spec_.requested_method, spec_.requested, spec_.options, spec_.encodings, analysis_);
   }
 
   if (input.animation_frame) frame_state_ = scene_->frame_state(*input.animation_frame);

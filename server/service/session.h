@@ -27,6 +27,7 @@ namespace strata::service {
 // What CreateSession asked for, checked.
 struct SessionSpec {
   const render::MethodSpec* method = nullptr;
+  std::string requested_method;  // as the client sent it: empty takes the default method
   v1::RenderOptions requested;  // as the client sent them
   v1::RenderOptions options;    // effective: every field set
   uint32_t width = 0, height = 0, seed = 0;

@@ -29,7 +29,7 @@ pids+=($!)
 "$build/client/strata" health --server "127.0.0.1:$port" --wait 20 > /dev/null || fail "no health through nginx"
 declare -A seen
 for id in alpha beta gamma delta epsilon zeta; do
-  "$build/client/strata" stream --server "127.0.0.1:$port" --session-id "$id" --width 16 --height 16 --frames 3 \
+  "$build/client/strata" stream --server "127.0.0.1:$port" --session-id "$id" --method pt --width 16 --height 16 --frames 3 \
     --encodings raw --out "$tmp/$id" > "$tmp/client-$id.log" 2>&1 || fail "$id failed through nginx"
   inst=$(python3 - "$tmp/$id/frames.json" <<'PY'
 import json, sys

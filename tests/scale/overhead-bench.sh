@@ -33,7 +33,7 @@ pids+=($!)
 
 stream() {  # name args...
   local name=$1; shift
-  "$strata" stream "$@" --width 64 --height 64 --frames "$frames" --encodings raw --out "$tmp/out-$name" > /dev/null 2>&1
+  "$strata" stream "$@" --method pt --width 64 --height 64 --frames "$frames" --encodings raw --out "$tmp/out-$name" > /dev/null 2>&1
   python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); l=sorted(f["client"]["latency_ms"] for f in d["frames"][5:]); print(l[len(l)//2])' \
     "$tmp/out-$name/frames.json"
 }

@@ -148,7 +148,7 @@ TEST(SecureCliTest, StrataCommandsTakeTlsAndTokenFlags) {
   };
   const auto health = run_process(with({strata_path(), "health", "--wait", "30"}, tls), 60s);
   EXPECT_EQ(health.exit_code, 0) << health.output;
-  const std::vector<std::string> stream = {strata_path(), "stream", "--width", "16", "--height", "16", "--frames", "2",
+  const std::vector<std::string> stream = {strata_path(), "stream", "--method", "pt", "--width", "16", "--height", "16", "--frames", "2",
                                            "--session-id", "cli-session", "--out", (dir.path / "out").string()};
   const auto ok = run_process(with(with(stream, tls), {"--auth-token-file", (dir.path / "token").string()}), 120s);
   ASSERT_EQ(ok.exit_code, 0) << ok.output;

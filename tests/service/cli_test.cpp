@@ -78,7 +78,7 @@ TEST(CliTest, CameraPathScriptDrivesCameraLodAndResolution) {
      "transforms": [{"instance_id": 1, "translation": {"x": 0.05}, "rotation": {"w": 1}, "scale": {"x": 1, "y": 1, "z": 1}}]},
     {"resolution": {"width": 40, "height": 30}, "options": {"spp": 3}, "lod_changes": [{"instance_id": 0, "level": 0}]}
   ]})";
-  const auto r = run_process({strata_path(), "stream", "--server", daemon.address(), "--scene", "cornell", "--width", "32",
+  const auto r = run_process({strata_path(), "stream", "--server", daemon.address(), "--scene", "cornell", "--method", "pt", "--width", "32",
                               "--height", "24", "--camera-path", script.string(), "--out", (dir.path / "out").string()},
                              120s);
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -140,7 +140,7 @@ TEST(CliTest, StrataStreamSendsRestirOptionsAndLogsReuse) {
   const auto off_doc = nlohmann::json::parse(read_file(dir.path / "off" / "frames.json"));
   EXPECT_EQ(off_doc["session"]["options"]["temporal_reuse"], false);
   EXPECT_EQ(off_doc["session"]["options"]["spatial_reuse"], false);
-  const auto pt = run_process({strata_path(), "stream", "--server", daemon.address(), "--scene", "cornell", "--width", "16",
+  const auto pt = run_process({strata_path(), "stream", "--server", daemon.address(), "--scene", "cornell", "--method", "pt", "--width", "16",
                                "--height", "16", "--frames", "1", "--encodings", "raw", "--out", (dir.path / "pt").string()},
                               120s);
   ASSERT_EQ(pt.exit_code, 0) << pt.output;

@@ -188,6 +188,33 @@ TEST_F(RestirTest, OptionChangesRecreateTheGpuStateAndSayWhy) {
   EXPECT_EQ(kept.options().spp(), 1u) << "the refused input changed the session";
 }
 
+// A session that names no method gets the default, restir-gather (render::k_default_method, the
+// method that wins at equal time), and its decision says so; spp != 1 then names the default and pt.
+TEST_F(RestirTest, SessionWithoutAMethodGetsTheDefaultAndSaysWhy) {
+  const v1::Session s = create_ok(stub(), restir_request(""));
+  EXPECT_EQ(s.method(), "restir-gather");
+  const v1::Decision* method = decision(s, "method");
+  ASSERT_NE(method, nullptr);
+  EXPECT_EQ(method->requested(), "");
+  EXPECT_EQ(method->value(), "restir-gather");
+  EXPECT_NE(method->reason().find("the default: lowest error at equal GPU time"), std::string::npos) << method->reason();
+  const auto frames = stream_frames(stub(), s.name(), 2);
+  ASSERT_EQ(frames.size(), 2u);
+  EXPECT_TRUE(frames[1].statistics().has_reuse());
+
+  const v1::Session named = create_ok(stub(), restir_request("restir-gather"));
+  EXPECT_EQ(decision(named, "method")->requested(), "restir-gather");
+  EXPECT_EQ(decision(named, "method")->reason().find("the default"), std::string::npos);
+
+  auto spp = restir_request("");
+  spp.mutable_options()->set_spp(4);
+  v1::Session refused;
+  expect_status(create_session(stub(), spp, &refused), StatusCode::INVALID_ARGUMENT,
+                "options.spp = 4 but method restir-gather (the default: no method was named)", "spp 4 without a method");
+  expect_status(create_session(stub(), spp, &refused), StatusCode::INVALID_ARGUMENT, "or method = \"pt\"",
+                "spp 4 without a method");
+}
+
 TEST_F(RestirTest, BadRestirOptionsAreInvalidArgumentNamingTheField) {
   struct Case {
     std::string what;
