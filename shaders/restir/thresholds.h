@@ -7,7 +7,11 @@ STRATA_NAMESPACE_BEGIN
 
 // Reconnection is refused at vertices smoother than this GGX alpha (near-specular lobes make the
 // reconnection Jacobian and the BSDF ratio explode; Lin et al. 2022 use a roughness threshold too).
-CONST_DEF float RECONNECT_MIN_ALPHA = 0.2f;
+// 0.03 (roughness 0.17) was measured against 0.2 and 0.05 (docs/BENCHMARKS.md, "The history search
+// and glossy reconnection vertices"): glossy dielectrics and metals down to roughness 0.2 reconnect,
+// and their pixels stop replaying whole paths that rarely survive the shift (chess RelMSE -14%,
+// carousel -9%); mirror-like lobes (stiff's alpha 4e-4) still do not.
+CONST_DEF float RECONNECT_MIN_ALPHA = 0.03f;
 // Reconnection edges shorter than this fraction of the distance to the camera are refused: the
 // 1/d^2 factor of the Jacobian is unstable for near-coincident vertices.
 CONST_DEF float RECONNECT_MIN_EDGE_RELATIVE = 1e-2f;
