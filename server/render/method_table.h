@@ -48,13 +48,13 @@ std::string method_names();
 std::string method_help();
 // The method a session or `stratad render` uses when none is named: the one that wins at equal
 // time (issue 13 point 5). restir-gather's RelMSE over pt's at equal GPU time, 256x256, frames
-// 0..15: cornell 0.31, chess 0.42-0.52, carousel 0.68, foliage 1.06-1.11 (docs/BENCHMARKS.md, "What
-// the reuse passes spend besides rays"): it wins on three built-in scenes, the moving one among
-// them, and is within the timing noise of pt on foliage's sub-pixel blades.
+// 0..15: cornell 0.27, chess 0.38, carousel 0.54, foliage 1.03 (docs/BENCHMARKS.md, "The history
+// search and glossy reconnection vertices"): it wins on three built-in scenes, the moving one among
+// them, and is within 3% of pt on foliage's sub-pixel blades.
 inline constexpr const char* k_default_method = "restir-gather";
 // Why, as the session's `method` decision says it when the client named none.
 inline constexpr const char* k_default_method_reason =
     "the default: lowest error at equal GPU time on the built-in scenes (RelMSE over pt's at equal time, 256x256: "
-    "cornell 0.31, chess 0.42-0.52, carousel 0.68, foliage 1.06-1.11; docs/BENCHMARKS.md)";
+    "cornell 0.27, chess 0.38, carousel 0.54, foliage 1.03; docs/BENCHMARKS.md)";
 
 }  // namespace strata::render
