@@ -121,7 +121,9 @@ TEST(RestirReconnection, SingularCasesFailTheShift) {
   // The rules the shaders apply (restir/path_vertex.glsl calls these): roughness, no specular lobe,
   // relative edge length, grazing angle at the reconnection vertex.
   EXPECT_TRUE(rough_vertex(0.3f, 0.04f));
-  EXPECT_FALSE(rough_vertex(0.1f, 0.04f));  // near-specular
+  EXPECT_TRUE(rough_vertex(0.04f, 0.04f));   // glossy (carousel's red glossy): at or above RECONNECT_MIN_ALPHA
+  EXPECT_FALSE(rough_vertex(0.02f, 0.04f));  // near-specular
+  EXPECT_FALSE(rough_vertex(4e-4f, 0.9f));   // the stiff scene's mirror
   EXPECT_TRUE(rough_vertex(0.0f, 0.0f));    // smooth but without a specular lobe: purely diffuse
   EXPECT_TRUE(reconnectable(true, true, 1.0f, 10.0f, 0.5f));
   EXPECT_FALSE(reconnectable(false, true, 1.0f, 10.0f, 0.5f));   // near-specular previous vertex
