@@ -46,11 +46,9 @@ std::vector<std::string> available_methods();
 std::string method_names();
 // One line per method, "name: summary", for --help.
 std::string method_help();
-// The method a session or `stratad render` uses when none is named: the one that wins at equal
-// time (issue 13 point 5). restir-gather's RelMSE over pt's at equal GPU time, 256x256, frames
-// 0..15: cornell 0.27, chess 0.38, carousel 0.54, foliage 1.03 (docs/BENCHMARKS.md, "The history
-// search and glossy reconnection vertices"): it wins on three built-in scenes, the moving one among
-// them, and is within 3% of pt on foliage's sub-pixel blades.
+// The method a session, `stratad render` and `strata stream` use when none is named: the one that
+// wins at equal time (issue 13 point 5; the figures are in k_default_method_reason, measured in
+// docs/BENCHMARKS.md, "The history search and glossy reconnection vertices").
 inline constexpr const char* k_default_method = "restir-gather";
 // Why, as the session's `method` decision says it when the client named none.
 inline constexpr const char* k_default_method_reason =

@@ -192,7 +192,8 @@ void Session::apply_locked(const PendingInput& input, std::string& reset_reason)
     spec_.width = settings_.width;
     spec_.height = settings_.height;
     if (!input.encodings.empty()) spec_.encodings = input.encodings;
-    if (options_changed) decisions_ = decide(*spec_.method, spec_.requested_method, spec_.requested, spec_.options, spec_.encodings, analysis_);
+    if (options_changed)
+      decisions_ = decide(*spec_.method, spec_.requested_method, spec_.requested, spec_.options, spec_.encodings, analysis_);
   }
 
   if (input.animation_frame) frame_state_ = scene_->frame_state(*input.animation_frame);

@@ -35,10 +35,10 @@ void count_shift(ShiftResult s) {
 
 // Backprojection: the previous pixel q that saw this pixel's centre hit (the primary stage's
 // visibility buffer) moved back with its object's previous transform, through the previous camera.
-// With `previous_centre` (the biased option's validation) also q's own centre hit in frame t-1:
+// For the biased option's validation also q's own centre hit in frame t-1 (load_previous_centre):
 // the previous G-buffer sample the DI tutorial validates against, from the previous visibility buffer.
 struct Backprojection {
-  uvec2 q;
+  uvec2 q;                 // the history pixel: under s, or the one the history search chose
   vec2 s;                  // the backprojected position in the previous image (pixels)
   SurfaceHit centre;       // this pixel's centre hit, frame t
   ResolvedSurface before;  // its surface point in frame t-1 (render space of t-1: the previous camera at the origin)
@@ -56,7 +56,7 @@ ivec2 temporal_try_offset(uint t, ivec2 step, bool x_first) {
   return order[min(t, 8u)];
 }
 
-bool backproject(uvec2 pixel, bool previous_centre, out Backprojection b) {
+bool backproject(uvec2 pixel, out Backprojection b) {
   b.have_previous = false;
   GpuPrimaryHit entry = b_primary[pixel_index(pixel)];
   SurfacePoint centre = primary_surface(entry);
@@ -70,12 +70,35 @@ bool backproject(uvec2 pixel, bool previous_centre, out Backprojection b) {
   if (!(s.x >= 0.0 && s.y >= 0.0 && s.x < float(u_frame.prev_width) && s.y < float(u_frame.prev_height))) return false;
   b.q = uvec2(s);
   b.s = s;
-  if (previous_centre) {
-    GpuPrimaryHit q_entry = b_primary_prev[b.q.y * u_frame.prev_width + b.q.x];
-    b.have_previous = (q_entry.flags & PRIMARY_HIT) != 0u;
-    if (b.have_previous) b.previous = primary_surface_hit(q_entry);
-  }
   return true;
+}
+
+// The history filter and search: whether q's centre surface in frame t-1 is like this pixel's
+// centre surface moved back to frame t-1 (both at their distance from the previous camera); when it
+// is not (its camera sample of frame t-1 found a blade or an edge that this pixel's does not), the
+// other previous pixels around s are tried, nearest first (RESTIR_TEMPORAL_TRIES), and the first
+// that is becomes q. Reads the visibility buffers only, never a reservoir, so the domain is still
+// chosen independently of the samples.
+bool find_history(inout Backprojection b) {
+  CentreSurface now = surface_of(b.before, length(b.before.hit.position));
+  vec2 f = fract(b.s);
+  ivec2 step = ivec2(f.x < 0.5 ? -1 : 1, f.y < 0.5 ? -1 : 1);  // towards the nearer neighbours
+  bool x_first = abs(f.x - 0.5) > abs(f.y - 0.5);
+  for (uint t = 0u; t < RESTIR_TEMPORAL_TRIES; ++t) {
+    ivec2 c = ivec2(uvec2(b.s)) + temporal_try_offset(t, step, x_first);
+    if (c.x < 0 || c.y < 0 || c.x >= int(u_frame.prev_width) || c.y >= int(u_frame.prev_height)) continue;
+    if (similar_surface(now, centre_surface(b_primary_prev[uint(c.y) * u_frame.prev_width + uint(c.x)]))) {
+      b.q = uvec2(c);
+      return true;
+    }
+  }
+  return false;
+}
+
+void load_previous_centre(inout Backprojection b) {
+  GpuPrimaryHit q_entry = b_primary_prev[b.q.y * u_frame.prev_width + b.q.x];
+  b.have_previous = (q_entry.flags & PRIMARY_HIT) != 0u;
+  if (b.have_previous) b.previous = primary_surface_hit(q_entry);
 }
 
 // The tutorial's validation of the history for the current pixel (DI tutorial section 5): the
@@ -100,37 +123,14 @@ void main() {
   bool unbiased = (u_restir.flags & RESTIR_UNBIASED) != 0u;
   Backprojection bp;
   Reservoir history = reservoir_empty();
-  bool have_history = backproject(pixel, !unbiased, bp);
-  uvec2 q = bp.q;
+  bool have_history = backproject(pixel, bp);
   // Whether domain q takes part depends on geometry only. An empty reservoir in q still claims its
   // MIS share of the canonical sample (its confidence counts), it just brings no candidate.
-  // With the history filter, q takes part only when its centre surface in frame t-1 is like this
-  // pixel's centre surface moved back to frame t-1 (both at their distance from the previous
-  // camera): a pixel that was disoccluded has no history, instead of the occluder's.
-  // When q's centre surface differs (its camera sample of frame t-1 found a blade or an edge that
-  // this pixel's does not), the other previous pixels around the backprojected position are tried,
-  // nearest first (RESTIR_TEMPORAL_TRIES): the first whose centre surface is like this one's is the
-  // history domain. The search reads the visibility buffers only, never a reservoir, so the domain
-  // is still chosen independently of the samples.
-  if (have_history && (u_restir.flags & RESTIR_TEMPORAL_FILTER) != 0u) {
-    CentreSurface now = surface_of(bp.before, length(bp.before.hit.position));
-    have_history = false;
-    ivec2 step = ivec2(fract(bp.s).x < 0.5 ? -1 : 1, fract(bp.s).y < 0.5 ? -1 : 1);  // towards the nearer neighbours
-    bool x_first = abs(fract(bp.s).x - 0.5) > abs(fract(bp.s).y - 0.5);
-    for (uint t = 0u; t < RESTIR_TEMPORAL_TRIES && !have_history; ++t) {
-      ivec2 c = ivec2(bp.q) + temporal_try_offset(t, step, x_first);
-      if (c.x < 0 || c.y < 0 || c.x >= int(u_frame.prev_width) || c.y >= int(u_frame.prev_height)) continue;
-      if (similar_surface(now, centre_surface(b_primary_prev[uint(c.y) * u_frame.prev_width + uint(c.x)]))) {
-        have_history = true;
-        q = uvec2(c);
-      }
-    }
-    if (have_history && !unbiased) {  // the biased validation compares with the chosen q's centre hit
-      GpuPrimaryHit q_entry = b_primary_prev[q.y * u_frame.prev_width + q.x];
-      bp.have_previous = (q_entry.flags & PRIMARY_HIT) != 0u;
-      if (bp.have_previous) bp.previous = primary_surface_hit(q_entry);
-    }
-  }
+  // With the history filter, q takes part only when its centre surface is like this pixel's
+  // (find_history): a pixel that was disoccluded has no history, instead of the occluder's.
+  if (have_history && (u_restir.flags & RESTIR_TEMPORAL_FILTER) != 0u) have_history = find_history(bp);
+  if (have_history && !unbiased) load_previous_centre(bp);  // the biased validation's, of the final q
+  uvec2 q = bp.q;
   if (have_history) history = unpack_reservoir(b_in[prev_domain_of(q, 0u)]);
   if (!have_history || !(history.confidence > 0.0)) {
     atomicAdd(b_counters[COUNTER_TEMPORAL_NO_HISTORY], 1u);
