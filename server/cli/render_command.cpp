@@ -94,9 +94,11 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_option("--mis", r.mis, "ReSTIR spatial MIS: balance | pairwise")->capture_default_str();
   cmd->add_option("--suffix", r.suffix, "ReSTIR path suffixes when the scene changed: auto | replay | cached (biased) | fail")
       ->capture_default_str();
-  cmd->add_option("--confidence-cap", r.confidence_cap, "ReSTIR confidence cap of the temporal history")->capture_default_str();
+  cmd->add_option("--confidence-cap", r.confidence_cap,
+                  "ReSTIR confidence cap of the temporal history where something moved (0: the method's, 4 gather, 2 splat)")
+      ->capture_default_str();
   cmd->add_option("--still-confidence-cap", r.still_confidence_cap,
-                  "ReSTIR gather: confidence cap where nothing moved, the camera and the instance a pixel sees (0: --confidence-cap)")
+                  "ReSTIR: confidence cap where nothing moved, the camera and the instance a pixel sees (0: --confidence-cap)")
       ->capture_default_str();
   cmd->add_option("--spatial-neighbors", r.spatial_neighbors, "ReSTIR spatial neighbours (0..8)")->capture_default_str();
   cmd->add_option("--spatial-radius", r.spatial_radius, "ReSTIR spatial radius in pixels (0: 2.5% of the height, at least 4 px)")->capture_default_str();

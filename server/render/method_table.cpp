@@ -25,17 +25,17 @@ std::vector<StageKind> MethodSpec::stages() const {
 const std::vector<MethodSpec>& method_table() {
   using S = StageKind;
   static const std::vector<MethodSpec> table = {
-      // name, summary, reuse, direct_lighting, splatting, backup, layers, temporal, fixed_primary
+      // name, summary, reuse, direct_lighting, splatting, backup, layers, temporal, fixed_primary, confidence_cap
       {"pt", "reference path tracer: next-event estimation and MIS, no reuse", false, false, false, false, false, S::path_trace,
-       false},
+       false, 4.0f},
       {"restir-gather", "ReSTIR PT (GRIS): gather temporal reuse by backprojection, spatial reuse", true, false, false, false, false,
-       S::temporal_gather, true},
+       S::temporal_gather, true, 4.0f},
       {"restir-di", "ReSTIR DI: resampled direct lighting over one-bounce paths (camera, first hit, light)", true, true, false,
-       false, false, S::temporal_gather, true},
+       false, false, S::temporal_gather, true, 4.0f},
       {"restir-splat", "reservoir splatting: previous reservoirs forward-projected with their primary hits (RS-main 4.1)", true,
-       false, true, false, false, S::temporal_splat, false},
+       false, true, false, false, S::temporal_splat, false, 2.0f},
       {"restir-splat-backup", "reservoir splatting with the backprojected backup sample (RS-main 4.2)", true, false, true, true,
-       false, S::temporal_splat, false},
+       false, S::temporal_splat, false, 2.0f},
   };
   return table;
 }

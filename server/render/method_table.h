@@ -35,6 +35,11 @@ struct MethodSpec {
   // start there instead of tracing the sample's camera ray (docs/ARCHITECTURE.md, "Domains and
   // their primary vertex"). Not for splatting, whose samples carry their primary hits.
   bool fixed_primary;
+  // The default cap of the temporal history's confidence where something moved (RestirOptions::
+  // confidence_cap = 0). Chosen by measurement (docs/BENCHMARKS.md, "Reservoir splatting under camera
+  // motion: the landing count"): 4 for gathering; 2 for splatting, whose history under motion carries
+  // the noise of how many splats land in a pixel, which a higher cap compounds.
+  float confidence_cap;
   std::vector<StageKind> stages() const;  // all stages, in frame order, before options switch any off
 };
 

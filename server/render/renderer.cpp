@@ -53,9 +53,10 @@ void RestirOptions::validate() const {
   require(mis == "balance" || mis == "pairwise", "restir.mis = '" + mis + "' is not one of: balance, pairwise");
   require(suffix == "auto" || suffix == "replay" || suffix == "cached" || suffix == "fail",
           "restir.suffix = '" + suffix + "' is not one of: auto, replay, cached, fail");
-  require(std::isfinite(confidence_cap) && confidence_cap >= RESTIR_MIN_CONFIDENCE_CAP && confidence_cap <= RESTIR_MAX_CONFIDENCE_CAP,
+  require(std::isfinite(confidence_cap) &&
+              (confidence_cap == 0.0f || (confidence_cap >= RESTIR_MIN_CONFIDENCE_CAP && confidence_cap <= RESTIR_MAX_CONFIDENCE_CAP)),
           "restir.confidence_cap = " + std::to_string(confidence_cap) + " is outside " +
-              range(RESTIR_MIN_CONFIDENCE_CAP, RESTIR_MAX_CONFIDENCE_CAP));
+              range(RESTIR_MIN_CONFIDENCE_CAP, RESTIR_MAX_CONFIDENCE_CAP) + " (0 = the method's)");
   require(std::isfinite(still_confidence_cap) &&
               (still_confidence_cap == 0.0f || (still_confidence_cap >= RESTIR_MIN_CONFIDENCE_CAP && still_confidence_cap <= RESTIR_MAX_CONFIDENCE_CAP)),
           "restir.still_confidence_cap = " + std::to_string(still_confidence_cap) + " is outside " +

@@ -38,7 +38,9 @@ struct RestirOptions {
   std::string suffix = "auto";
   bool temporal = true;              // temporal reuse (gather: backprojection)
   bool spatial = true;               // spatial reuse
-  float confidence_cap = 4.0f;       // c_cap of the temporal history (chosen by measurement: docs/BENCHMARKS.md)
+  // c_cap of the temporal history where something moved; 0: the method's (MethodSpec::confidence_cap,
+  // chosen by measurement: docs/BENCHMARKS.md).
+  float confidence_cap = 0.0f;
   uint32_t spatial_neighbors = 2;    // N (chosen by measurement: docs/BENCHMARKS.md, "Spatial reuse: filter and radius")
   float spatial_radius = 0.0f;       // pixels; 0: automatic, default_spatial_radius(height)
   uint32_t initial_candidates = 1;   // N_init paths per pixel for the canonical sample
@@ -52,11 +54,14 @@ struct RestirOptions {
   // with G x G stratified camera samples (restir_initial.comp); 1: the domain's camera sample only.
   uint32_t direct_strata = 3;
   bool temporal_filter = true;       // gather: the history pixel's centre surface must be like this pixel's
-  // Gather: the confidence cap of a pixel where nothing moved since the previous frame (the camera,
-  // and the instance its primary vertex lies on); 0: confidence_cap. Chosen by measurement:
+  // The confidence cap of a pixel where nothing moved since the previous frame (the camera, and the
+  // instance its primary vertex or pixel centre lies on); 0: the moving cap. Chosen by measurement:
   // docs/BENCHMARKS.md, "What the reuse passes spend besides rays".
   float still_confidence_cap = 8.0f;
-  float still_cap() const { return still_confidence_cap > 0.0f ? still_confidence_cap : confidence_cap; }
+  float moving_cap(const MethodSpec& method) const { return confidence_cap > 0.0f ? confidence_cap : method.confidence_cap; }
+  float still_cap(const MethodSpec& method) const {
+    return still_confidence_cap > 0.0f ? still_confidence_cap : moving_cap(method);
+  }
   void validate() const;
   // Whether the primary stage runs and fills the visibility buffer: the method's domains start at
   // its hits (MethodSpec::fixed_primary), or a temporal or spatial stage reads it.

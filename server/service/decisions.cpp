@@ -84,18 +84,23 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                                       : "confidence-only temporal weights, as in the ReSTIR DI tutorial (biased)"));
   out.push_back(make("confidence_cap", asked(req.has_confidence_cap(), format_float(req.confidence_cap())),
                      format_float(eff.confidence_cap()), temporal,
-                     !method.reuse ? no_reuse : temporal ? "temporal confidence is clamped to this" : no_temporal));
+                     !method.reuse ? no_reuse
+                     : !temporal   ? no_temporal
+                     : req.has_confidence_cap()
+                         ? "temporal confidence is clamped to this where something moved"
+                     : method.splatting
+                         ? "the splat methods' default: under motion their history carries the noise of how many splats land in "
+                           "a pixel, which a higher cap compounds (docs/BENCHMARKS.md)"
+                         : "temporal confidence is clamped to this where something moved"));
   {
-    const float still = restir_options(eff).still_cap();
+    const float still = restir_options(eff).still_cap(method);
     out.push_back(make("still_confidence_cap", asked(req.has_still_confidence_cap(), format_float(req.still_confidence_cap())),
-                       format_float(eff.still_confidence_cap()), temporal && method.fixed_primary,
+                       format_float(eff.still_confidence_cap()), temporal,
                        !method.reuse ? no_reuse
                        : !temporal   ? no_temporal
-                       : !method.fixed_primary
-                           ? "the splat methods cap with confidence_cap everywhere"
-                           : "confidence is clamped to " + format_float(still) +
-                                 " where nothing moved since the previous frame (the camera, and the instance the pixel sees), "
-                                 "to confidence_cap elsewhere"));
+                                     : "confidence is clamped to " + format_float(still) +
+                                         " where nothing moved since the previous frame (the camera, and the instance the pixel sees), "
+                                         "to confidence_cap elsewhere"));
   }
   out.push_back(make("spatial_neighbors", asked(req.has_spatial_neighbors(), u(req.spatial_neighbors())),
                      u(eff.spatial_neighbors()), method.reuse && eff.spatial_reuse(),

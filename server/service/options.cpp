@@ -103,7 +103,8 @@ void normalize(v1::RenderOptions& o) {
   if (o.lod_mapping() == v1::LOD_MAPPING_UNSPECIFIED) o.set_lod_mapping(v1::LOD_MAPPING_AUTO);
 }
 
-v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const ServiceLimits& limits, uint32_t height) {
+v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const render::MethodSpec& method, const ServiceLimits& limits,
+                                uint32_t height) {
   v1::RenderOptions o;
   o.set_spp(1);
   o.set_max_depth(std::min<uint32_t>(16, limits.max_depth));
@@ -112,9 +113,9 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const Servic
   o.set_suffix(v1::SUFFIX_AUTO);
   o.set_lod_mapping(v1::LOD_MAPPING_AUTO);
   o.set_layers(0);
-  // The ReSTIR defaults are render::RestirOptions'.
+  // The ReSTIR defaults are render::RestirOptions' and the method's.
   const render::RestirOptions restir;
-  o.set_confidence_cap(restir.confidence_cap);
+  o.set_confidence_cap(restir.moving_cap(method));
   o.set_still_confidence_cap(restir.still_confidence_cap);
   o.set_spatial_neighbors(restir.spatial_neighbors);
   o.set_spatial_radius(restir.spatial_radius_pixels(height));

@@ -24,8 +24,10 @@ void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, cons
 void check_method_options(const render::MethodSpec& method, const v1::RenderOptions& o, const std::string& field,
                           bool defaulted = false);
 // Every field set: the requested value, else the default (max_depth at most limits.max_depth;
-// spatial_radius from the image `height`, render::RestirOptions::default_spatial_radius).
-v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const ServiceLimits& limits, uint32_t height);
+// spatial_radius from the image `height`, render::RestirOptions::default_spatial_radius; confidence_cap
+// the `method`'s).
+v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const render::MethodSpec& method, const ServiceLimits& limits,
+                                uint32_t height);
 // Enum fields set to UNSPECIFIED take their defaults.
 void normalize(v1::RenderOptions& o);
 

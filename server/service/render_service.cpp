@@ -33,7 +33,7 @@ grpc::Status RenderServiceImpl::CreateSession(grpc::ServerContext*, const v1::Cr
     check_options(req->options(), limits, "options");
     check_method_options(*spec.method, req->options(), "options", req->method().empty());
     spec.requested = req->options();
-    spec.options = with_defaults(req->options(), limits, req->resolution().height());
+    spec.options = with_defaults(req->options(), *spec.method, limits, req->resolution().height());
     spec.width = req->resolution().width();
     spec.height = req->resolution().height();
     spec.seed = req->seed();

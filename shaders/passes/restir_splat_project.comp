@@ -46,7 +46,7 @@ void main() {
   y.y = shifted_sample(x.y, s.shift);
   y.y.jitter = s.jitter;
   y.y.time = s.time;
-  y.confidence = confidence_capped(x.confidence, u_restir.confidence_cap);  // RS-main 3.4
+  // X_i's confidence, capped where it lands (restir_splat_resample.comp) with the landing pixel's cap.
   SplatRecord rec;
   rec.reservoir = pack_reservoir(y);
   rec.f_jacobian = vec4(s.shift.f, s.jacobian);

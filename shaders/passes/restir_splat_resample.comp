@@ -30,9 +30,12 @@ layout(set = 0, binding = BINDING_SPLAT_OFFSETS, std430) readonly buffer Offsets
 layout(set = 0, binding = BINDING_SPLAT_LIST, std430) readonly buffer List { uint b_list[]; };
 layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
 
-float prev_confidence(ivec2 q) {
+// The confidence of previous domain q, capped with `cap`: this pixel's (confidence_cap_of its centre
+// hit). Every previous domain's confidence enters this pixel's MIS weights with the same cap, so the
+// weights of each path still sum to one (a confidence weight may depend on the pixel the path is in).
+float prev_confidence(ivec2 q, float cap) {
   if (q.x < 0 || q.y < 0 || q.x >= int(u_frame.prev_width) || q.y >= int(u_frame.prev_height)) return 0.0;
-  return confidence_capped(unpack_reservoir(b_in[prev_domain_of(uvec2(q), 0u)]).confidence, u_restir.confidence_cap);
+  return confidence_capped(unpack_reservoir(b_in[prev_domain_of(uvec2(q), 0u)]).confidence, cap);
 }
 
 // The backprojection of this pixel's centre (its primary hit moved back with its object's previous
@@ -45,7 +48,7 @@ struct Backprojection {
   float confidence;
 };
 
-Backprojection backproject_centre(uvec2 pixel) {
+Backprojection backproject_centre(uvec2 pixel, float cap) {
   Backprojection bp;
   bp.ok = false;
   bp.backup = uvec2(0u);
@@ -59,8 +62,8 @@ Backprojection backproject_centre(uvec2 pixel) {
   vec2 s = vec2(bp.backup) + sub - 0.5;  // continuous coordinates of pixel centres
   ivec2 b = ivec2(floor(s));
   vec2 t = s - vec2(b);
-  bp.confidence = (1.0 - t.x) * (1.0 - t.y) * prev_confidence(b) + t.x * (1.0 - t.y) * prev_confidence(b + ivec2(1, 0)) +
-                  (1.0 - t.x) * t.y * prev_confidence(b + ivec2(0, 1)) + t.x * t.y * prev_confidence(b + ivec2(1, 1));
+  bp.confidence = (1.0 - t.x) * (1.0 - t.y) * prev_confidence(b, cap) + t.x * (1.0 - t.y) * prev_confidence(b + ivec2(1, 0), cap) +
+                  (1.0 - t.x) * t.y * prev_confidence(b + ivec2(0, 1), cap) + t.x * t.y * prev_confidence(b + ivec2(1, 1), cap);
   return bp;
 }
 
@@ -98,10 +101,13 @@ void main() {
   // ones by 1 - alpha (alpha = 0.5). The same scale applies to a domain in every weight below, so
   // the weights of every path still sum to one.
   float alpha = with_backup ? 0.5 : 0.0;
-  Backprojection bp = backproject_centre(pixel);
+  // The cap of this pixel's domain (RS-main 3.4): still_confidence_cap where the camera and the
+  // instance its centre sees did not move, else confidence_cap (docs/ARCHITECTURE.md, "Confidence cap").
+  float cap = confidence_cap_of(b_primary[pixel_index(pixel)]);
+  Backprojection bp = backproject_centre(pixel, cap);
   bool backup_domain = with_backup && bp.ok;
   Reservoir xb = backup_domain ? unpack_reservoir(b_in[prev_domain_of(bp.backup, 0u)]) : reservoir_empty();
-  float c_b = backup_domain ? alpha * confidence_capped(xb.confidence, u_restir.confidence_cap) : 0.0;
+  float c_b = backup_domain ? alpha * confidence_capped(xb.confidence, cap) : 0.0;
 
   Rng rng = rng_init(pixel_index(pixel), 0x5B1A7u, u_frame.frame_index, u_frame.seed);
   GrisState st = gris_begin();
@@ -163,7 +169,7 @@ void main() {
     float from = jac > 0.0 ? p_hat_from(luminance(r.f), jac) : 0.0;
     if (job == 0u) {
       from_r = from;
-      if (jac > 0.0) c_r = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel));
+      if (jac > 0.0) c_r = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel), cap);
     } else if (job == 1u) {
       from_b_star = from;
     } else if (job == 2u) {
@@ -171,7 +177,7 @@ void main() {
       j_b = jac;
     } else if (job == 3u) {
       from_r_b = from;
-      if (jac > 0.0) c_r_b = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel));
+      if (jac > 0.0) c_r_b = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel), cap);
       // The canonical sample (RS-main Eq. 12-13; RS-supp Eq. 21) and the backup (RS-supp Eq. 22).
       float m_star = mis_balance_terms(c_star * canonical.p_hat, c_b * from_b_star, c_r * from_r);
       gris_stream_path(st, m_star * canonical.p_hat * canonical.ucw, canonical.p_hat, f_canonical, c_star, 0u, rng_next_float(rng));
@@ -187,7 +193,8 @@ void main() {
       vec3 f_y = rec.f_jacobian.xyz;
       float jacobian = rec.f_jacobian.w;
       float p_y = luminance(f_y);
-      float m_s = mis_balance_terms((1.0 - alpha) * y_s.confidence * y_s.p_hat / jacobian, c_star * p_y, c_b * from);
+      float c_s = (1.0 - alpha) * confidence_capped(y_s.confidence, cap);
+      float m_s = mis_balance_terms(c_s * y_s.p_hat / jacobian, c_star * p_y, c_b * from);
       if (gris_stream_path(st, m_s * p_y * y_s.ucw * jacobian, p_y, f_y, 0.0, s + 2u, rng_next_float(rng))) {
         out_r = y_s;
         f = f_y;
@@ -202,8 +209,8 @@ void main() {
   out_r.p_hat = st.selected_p_hat;
   out_r.ucw = gris_ucw(st);  // RS-main Eq. 5
   // RS-main Eq. 17 (with the backup, its confidence is added too).
-  float c_backup = backup_domain ? confidence_capped(xb.confidence, u_restir.confidence_cap) : 0.0;
-  out_r.confidence = min(c_star + bp.confidence + c_backup, u_restir.confidence_cap);
+  float c_backup = backup_domain ? confidence_capped(xb.confidence, cap) : 0.0;
+  out_r.confidence = min(c_star + bp.confidence + c_backup, cap);
   if (st.selected == GRIS_NONE) {
     float c = out_r.confidence;
     out_r = reservoir_empty();

@@ -59,7 +59,7 @@ Reservoir reservoir_empty() {
 // (RS-main 3.4; docs/ARCHITECTURE.md, "Confidence cap"): still_confidence_cap where nothing the
 // domain's history depends on moved since the previous frame (the camera, and the instance its
 // primary vertex lies on), else confidence_cap. It reads geometry only, so like any confidence
-// weights it leaves the MIS weights unbiased. (The host sets both caps equal for the splat methods.)
+// weights it leaves the MIS weights unbiased. For the splat methods `e` is the pixel-centre hit.
 float confidence_cap_of(GpuPrimaryHit e) {
   bool still = (u_frame.history_flags & HISTORY_CAMERA_STILL) != 0u && (e.flags & PRIMARY_HIT) != 0u &&
                instance_changes(e.instance) == 0u;

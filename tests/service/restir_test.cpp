@@ -215,6 +215,30 @@ TEST_F(RestirTest, SessionWithoutAMethodGetsTheDefaultAndSaysWhy) {
                 "spp 4 without a method");
 }
 
+// The confidence cap where something moved is the method's unless asked for (render::MethodSpec::
+// confidence_cap): 2 for the splat methods, whose history under motion carries the noise of how many
+// splats land in a pixel (docs/BENCHMARKS.md); the decision says so. The still cap applies to them too.
+TEST_F(RestirTest, SplatSessionsGetTheirMethodsConfidenceCapAndSayWhy) {
+  for (const char* method : {"restir-splat", "restir-splat-backup"}) {
+    const v1::Session s = create_ok(stub(), restir_request(method));
+    EXPECT_FLOAT_EQ(s.options().confidence_cap(), 2.0f) << method;
+    EXPECT_FLOAT_EQ(s.options().still_confidence_cap(), 8.0f) << method;
+    const v1::Decision* cap = decision(s, "confidence_cap");
+    ASSERT_NE(cap, nullptr);
+    EXPECT_EQ(cap->value(), "2");
+    EXPECT_NE(cap->reason().find("how many splats land in a pixel"), std::string::npos) << cap->reason();
+    EXPECT_TRUE(decision(s, "still_confidence_cap")->applies()) << method;
+  }
+  auto asked = restir_request("restir-splat");
+  asked.mutable_options()->set_confidence_cap(6.0f);
+  const v1::Session s = create_ok(stub(), asked);
+  EXPECT_FLOAT_EQ(s.options().confidence_cap(), 6.0f);
+  EXPECT_EQ(decision(s, "confidence_cap")->reason().find("splats land"), std::string::npos);
+  const auto frames = stream_frames(stub(), s.name(), 2);
+  ASSERT_EQ(frames.size(), 2u);
+  EXPECT_GT(counter(frames[1].statistics().reuse(), "splat.landed"), 0u);
+}
+
 TEST_F(RestirTest, BadRestirOptionsAreInvalidArgumentNamingTheField) {
   struct Case {
     std::string what;

@@ -17,10 +17,9 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
   c.light_candidates = o.light_candidates;
   c.shift_mode = o.shift == "reconnection" ? gpu::SHIFT_RECONNECTION : gpu::SHIFT_HYBRID;
   c.mis_mode = o.mis == "balance" ? gpu::MIS_BALANCE : gpu::MIS_PAIRWISE;
-  c.confidence_cap = o.confidence_cap;
-  // The gather methods' domains have a fixed primary vertex that the still test reads; the splat
-  // methods cap with confidence_cap everywhere.
-  c.still_confidence_cap = spec.fixed_primary ? o.still_cap() : o.confidence_cap;
+  // The still test reads the domain's primary vertex (gather) or pixel-centre hit (splat).
+  c.confidence_cap = o.moving_cap(spec);
+  c.still_confidence_cap = o.still_cap(spec);
   c.spatial_radius = o.spatial_radius_pixels(s.height);
   c.spatial_neighbors = o.spatial_neighbors;
   c.disocclusion_spatial_neighbors = o.disocclusion_spatial_neighbors;
