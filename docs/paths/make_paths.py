@@ -58,3 +58,12 @@ for i in range(8):
     eye = [-2.0 + 0.5 * i, 1.6, 6.0]
     frames.append({"animation_frame": i, "camera": camera(eye, look_at(eye, target), 0.8, norm(sub(target, eye)))})
 write("carousel_fast_pan.json", frames)
+
+# carousel's default animation split into its two motions (8 frames): the ring turns under the
+# camera of frame 0, or the camera pans (eye from (-1.5, 1.6, 6), 3 m over 119 frames, aiming at
+# (0, 1, -1)) over the ring of frame 0.
+def carousel_camera(i):
+    eye = [-1.5 + 3.0 * i / 119.0, 1.6, 6.0]
+    return camera(eye, look_at(eye, target), 0.8, norm(sub(target, eye)))
+write("carousel_objects_only.json", [{"animation_frame": i, "camera": carousel_camera(0)} for i in range(8)])
+write("carousel_camera_only.json", [{"animation_frame": 0, "camera": carousel_camera(i)} for i in range(8)])
