@@ -21,7 +21,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     check_resolution(req.resolution(), config.limits, "resolution");
     check_options(req.options(), config.limits, "options");
     check_method_options(method, req.options(), "options");
-    (void)with_defaults(req.options(), config.limits, req.resolution().height());
+    (void)with_defaults(req.options(), method, config.limits, req.resolution().height());
     (void)check_encodings(req.encodings(), "encodings");
     if (!req.session_id().empty()) check_session_id(req.session_id(), "session_id");
     if (req.has_scene()) (void)load_scene_source(req.scene(), config);
