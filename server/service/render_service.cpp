@@ -2,11 +2,10 @@
 
 #include <algorithm>
 
-#include "render/renderer.h"
+#include "render/method_table.h"
 #include "service/errors.h"
-#include "service/input_checks.h"
-#include "service/options.h"
 #include "service/scene_source.h"
+#include "service/session_spec.h"
 #include "service/stream_reactor.h"
 
 namespace strata::service {
@@ -24,21 +23,7 @@ void set_duration(google::protobuf::Duration* d, std::chrono::nanoseconds ns) {
 grpc::Status RenderServiceImpl::CreateSession(grpc::ServerContext*, const v1::CreateSessionRequest* req, v1::Session* resp) {
   return guarded([&] {
     if (core_.draining.load()) fail(grpc::StatusCode::UNAVAILABLE, "stratad is draining (shutting down): no new sessions");
-    const ServiceLimits& limits = core_.config.limits;
-    SessionSpec spec;
-    spec.method = &check_method(req->method(), "method");
-    spec.requested_method = req->method();
-    if (!req->has_resolution()) fail_invalid("resolution is required (width and height in pixels)");
-    check_resolution(req->resolution(), limits, "resolution");
-    check_options(req->options(), limits, "options");
-    check_method_options(*spec.method, req->options(), "options", req->method().empty());
-    spec.requested = req->options();
-    spec.options = with_defaults(req->options(), *spec.method, limits, req->resolution().height());
-    spec.width = req->resolution().width();
-    spec.height = req->resolution().height();
-    spec.seed = req->seed();
-    spec.encodings = check_encodings(req->encodings(), "encodings");
-    if (!req->has_scene()) fail_invalid("scene is required: set scene.builtin, scene.path or scene.glb");
+    const SessionSpec spec = check_create_session(*req, core_.config.limits);
     auto session = core_.registry.create(req->session_id(), "session_id", [&](const std::string& name) {
       auto scene = load_scene_source(req->scene(), core_.config);
       return std::make_shared<Session>(name, std::move(scene), spec, core_.ctx, core_.metrics);

@@ -20,19 +20,10 @@
 #include "service/frame_input.h"
 #include "service/metrics.h"
 #include "service/options.h"
+#include "service/session_spec.h"
 #include "strata/v1/render.pb.h"
 
 namespace strata::service {
-
-// What CreateSession asked for, checked.
-struct SessionSpec {
-  const render::MethodSpec* method = nullptr;
-  std::string requested_method;  // as the client sent it: empty takes the default method
-  v1::RenderOptions requested;  // as the client sent them
-  v1::RenderOptions options;    // effective: every field set
-  uint32_t width = 0, height = 0, seed = 0;
-  std::vector<v1::ImageEncoding> encodings;
-};
 
 // One rendered frame on its way to the client.
 struct RenderedFrame {

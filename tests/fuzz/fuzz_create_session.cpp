@@ -3,8 +3,7 @@
 // scene source: a built-in name, a path refused without --scene-dir, or inline .glb bytes loaded
 // and held to the limits). Must end in success or a status naming the field.
 #include "fuzz_support.h"
-#include "service/input_checks.h"
-#include "service/options.h"
+#include "service/session_spec.h"
 #include "service/scene_source.h"
 #include "service/session_id.h"
 
@@ -16,15 +15,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   config.limits.max_instances = 256;
   strata::fuzz::expect_clean("create_session", [&] {
     using namespace strata::service;
-    const auto& method = check_method(req.method(), "method");  // the method table's row, or INVALID_ARGUMENT
-    if (!req.has_resolution()) return;
-    check_resolution(req.resolution(), config.limits, "resolution");
-    check_options(req.options(), config.limits, "options");
-    check_method_options(method, req.options(), "options");
-    (void)with_defaults(req.options(), method, config.limits, req.resolution().height());
-    (void)check_encodings(req.encodings(), "encodings");
+    (void)check_create_session(req, config.limits);  // what CreateSession checks before the device
     if (!req.session_id().empty()) check_session_id(req.session_id(), "session_id");
-    if (req.has_scene()) (void)load_scene_source(req.scene(), config);
+    (void)load_scene_source(req.scene(), config);
   });
   return 0;
 }

@@ -1,0 +1,27 @@
+#include "service/session_spec.h"
+
+#include "service/errors.h"
+#include "service/input_checks.h"
+#include "service/options.h"
+
+namespace strata::service {
+
+SessionSpec check_create_session(const v1::CreateSessionRequest& req, const ServiceLimits& limits) {
+  SessionSpec spec;
+  spec.method = &check_method(req.method(), "method");
+  spec.requested_method = req.method();
+  if (!req.has_resolution()) fail_invalid("resolution is required (width and height in pixels)");
+  check_resolution(req.resolution(), limits, "resolution");
+  check_options(req.options(), limits, "options");
+  check_method_options(*spec.method, req.options(), "options", req.method().empty());
+  spec.requested = req.options();
+  spec.options = with_defaults(req.options(), *spec.method, limits, req.resolution().height());
+  spec.width = req.resolution().width();
+  spec.height = req.resolution().height();
+  spec.seed = req.seed();
+  spec.encodings = check_encodings(req.encodings(), "encodings");
+  if (!req.has_scene()) fail_invalid("scene is required: set scene.builtin, scene.path or scene.glb");
+  return spec;
+}
+
+}  // namespace strata::service
