@@ -7,10 +7,15 @@
 namespace strata::render {
 namespace {
 
-// With both kinds of light, NEE splits its samples evenly between them.
-float env_select_prob(bool env_nee, uint32_t emitter_count) { return !env_nee ? 0.0f : (emitter_count == 0 ? 1.0f : 0.5f); }
+// The probability that NEE picks the environment: all of them when it is sampled at all
+// (environment_nee: only in scenes without emitters), none otherwise.
+float env_select_prob(bool env_nee, uint32_t emitter_count) { return env_nee && emitter_count == 0 ? 1.0f : 0.0f; }
 
 }  // namespace
+
+bool environment_nee(const scene::Environment& env, bool scene_has_emitters) {
+  return !scene_has_emitters && glm::any(glm::greaterThan(env.radiance, glm::vec3(0.0f)));
+}
 
 // The camera in its own frame's render space (its position is the origin).
 gpu::GpuCamera make_camera(const scene::Camera& cam, uint32_t width, uint32_t height) {

@@ -117,8 +117,7 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
     if (frame.lods[i] >= sc.instances[i].lod_meshes.size())
       throw std::invalid_argument("lods[" + std::to_string(i) + "] = " + std::to_string(frame.lods[i]) + " but instance has " +
                                   std::to_string(sc.instances[i].lod_meshes.size()) + " levels");
-  // The environment is sampled by NEE whenever it emits (a scene property, the same every frame).
-  const bool env_nee = glm::any(glm::greaterThan(sc.environment.radiance, glm::vec3(0.0f)));
+  const bool env_nee = environment_nee(sc.environment, scene_->has_emitters());
   if (!accumulate) accumulated_spp_ = 0;
   uint32_t tlas_builds_before = scene_->tlas_builds(), tlas_refits_before = scene_->tlas_refits();
 
