@@ -23,6 +23,8 @@ void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
                   "ReSTIR spatial neighbours of pixels without history (0..8; 0: --spatial-neighbors; default 6)");
   cmd->add_option("--direct-strata", r.direct_strata,
                   "ReSTIR: G x G stratified camera samples for what pixels at edges of directly seen emission see (1..8; default 3)");
+  cmd->add_option("--albedo-strata", r.albedo_strata,
+                  "ReSTIR gather: G x G camera samples of the albedo control variate at albedo edges (1..8; 1: off; default 2)");
   cmd->add_flag("--no-temporal", r.no_temporal, "ReSTIR: no temporal reuse");
   cmd->add_flag("--no-temporal-filter", r.no_temporal_filter, "ReSTIR gather: take history from any previous pixel (no surface test)");
   cmd->add_flag("--no-spatial", r.no_spatial, "ReSTIR: no spatial reuse");
@@ -49,6 +51,7 @@ std::string restir_flags_text(const RestirFlags& r) {
   if (r.light_candidates) add("--light-candidates", std::to_string(*r.light_candidates));
   if (r.disocclusion_spatial_neighbors) add("--disocclusion-spatial-neighbors", std::to_string(*r.disocclusion_spatial_neighbors));
   if (r.direct_strata) add("--direct-strata", std::to_string(*r.direct_strata));
+  if (r.albedo_strata) add("--albedo-strata", std::to_string(*r.albedo_strata));
   if (r.no_temporal) add("--no-temporal", "");
   if (r.no_temporal_filter) add("--no-temporal-filter", "");
   if (r.no_spatial) add("--no-spatial", "");
@@ -76,6 +79,7 @@ void set_restir_options(const RestirFlags& r, v1::RenderOptions& o) {
   if (r.light_candidates) o.set_light_candidates(*r.light_candidates);
   if (r.disocclusion_spatial_neighbors) o.set_disocclusion_spatial_neighbors(*r.disocclusion_spatial_neighbors);
   if (r.direct_strata) o.set_direct_strata(*r.direct_strata);
+  if (r.albedo_strata) o.set_albedo_strata(*r.albedo_strata);
   if (r.no_temporal) o.set_temporal_reuse(false);
   if (r.no_temporal_filter) o.set_temporal_filter(false);
   if (r.no_spatial) o.set_spatial_reuse(false);

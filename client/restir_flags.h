@@ -14,7 +14,8 @@ namespace strata::client {
 struct RestirFlags {
   std::string shift, mis, suffix;  // empty: not given
   std::optional<float> confidence_cap, still_confidence_cap, spatial_radius;
-  std::optional<uint32_t> spatial_neighbors, initial_candidates, light_candidates, disocclusion_spatial_neighbors, direct_strata;
+  std::optional<uint32_t> spatial_neighbors, initial_candidates, light_candidates, disocclusion_spatial_neighbors, direct_strata,
+      albedo_strata;
   bool no_temporal = false, no_spatial = false, biased = false, no_temporal_filter = false;
 };
 

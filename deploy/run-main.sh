@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job: starts `stratad serve` on 127.0.0.1 (a free port), waits until its health is
 # SERVING, streams carousel (objects and the camera move) with the default method (restir-gather,
-# the method that wins at equal time: render::k_default_method) with `strata stream` into out/main
+# render::k_default_method; its figures against pt: docs/BENCHMARKS.md) with `strata stream` into out/main
 # (frame_NNNN.exr, frame_NNNN.png, frames.json), then stops the server with SIGTERM (graceful drain). Exits non-zero
 # on any failure. STRATA_BUILD (default build/release) and STRATA_OUT (default out/main) override
 # the build and output folders.

@@ -109,6 +109,9 @@ Runner add_render_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--direct-strata", r.direct_strata, "ReSTIR: G x G camera samples at edges of directly seen emission (1..8)")
       ->capture_default_str();
+  cmd->add_option("--albedo-strata", r.albedo_strata,
+                  "ReSTIR gather: G x G camera samples of the albedo control variate at albedo edges (1..8; 1: off)")
+      ->capture_default_str();
   cmd->add_flag("!--no-temporal-filter", r.temporal_filter, "ReSTIR gather: history from any previous pixel (no surface test)");
   cmd->add_flag("!--no-temporal", r.temporal, "ReSTIR: no temporal reuse");
   cmd->add_flag("!--no-spatial", r.spatial, "ReSTIR: no spatial reuse");

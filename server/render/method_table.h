@@ -51,13 +51,16 @@ std::vector<std::string> available_methods();
 std::string method_names();
 // One line per method, "name: summary", for --help.
 std::string method_help();
-// The method a session, `stratad render` and `strata stream` use when none is named: the one that
-// wins at equal time (issue 13 point 5; the figures are in k_default_method_reason, measured in
-// docs/BENCHMARKS.md, "The history search and glossy reconnection vertices").
+// The method a session, `stratad render` and `strata stream` use when none is named (issue 13 point
+// 5 made it the default when it won at equal time against a pt whose light selection wasted half its
+// samples; against the fixed pt it wins on cornell only: k_default_method_reason, measured in
+// docs/BENCHMARKS.md, "pt's light selection, temporal reuse on sub-pixel geometry, the albedo
+// control variate"). Whether pt should be the default again is the steering side's call (issue 13).
 inline constexpr const char* k_default_method = "restir-gather";
 // Why, as the session's `method` decision says it when the client named none.
 inline constexpr const char* k_default_method_reason =
-    "the default: lowest error at equal GPU time on the built-in scenes (RelMSE over pt's at equal time, 256x256: "
-    "cornell 0.27, chess 0.38, carousel 0.54, foliage 1.03; docs/BENCHMARKS.md)";
+    "the default: ReSTIR PT, the method the service is built for; its RelMSE over pt's at equal GPU time on lavapipe, "
+    "256x256: cornell 0.30, carousel 1.1, chess 1.4, foliage 3.4 (docs/BENCHMARKS.md); pt wins where reuse costs "
+    "as much as the samples it replaces";
 
 }  // namespace strata::render

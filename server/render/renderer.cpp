@@ -77,6 +77,8 @@ void RestirOptions::validate() const {
               range(0u, RESTIR_MAX_SPATIAL_NEIGHBORS));
   require(direct_strata >= 1 && direct_strata <= RESTIR_MAX_DIRECT_STRATA,
           "restir.direct_strata = " + std::to_string(direct_strata) + " is outside " + range(1u, RESTIR_MAX_DIRECT_STRATA));
+  require(albedo_strata >= 1 && albedo_strata <= RESTIR_MAX_DIRECT_STRATA,
+          "restir.albedo_strata = " + std::to_string(albedo_strata) + " is outside " + range(1u, RESTIR_MAX_DIRECT_STRATA));
   require(splats_per_frame >= 1 && splats_per_frame <= RESTIR_MAX_SPLATS_PER_FRAME,
           "restir.splats_per_frame = " + std::to_string(splats_per_frame) + " is outside " + range(1u, RESTIR_MAX_SPLATS_PER_FRAME));
 }

@@ -53,6 +53,10 @@ struct RestirOptions {
   // G: a pixel at the edge of something the camera sees emitting estimates what it sees directly
   // with G x G stratified camera samples (restir_initial.comp); 1: the domain's camera sample only.
   uint32_t direct_strata = 3;
+  // G: gather methods add the albedo control variate to the reflected light of pixels at albedo edges,
+  // with G x G stratified camera samples of the albedo (restir_initial.comp, restir_shade.comp;
+  // docs/ARCHITECTURE.md, "The albedo control variate"); 1: off.
+  uint32_t albedo_strata = 2;
   bool temporal_filter = true;       // gather: the history pixel's centre surface must be like this pixel's
   // The confidence cap of a pixel where nothing moved since the previous frame (the camera, and the
   // instance its primary vertex or pixel centre lies on); 0: the moving cap. Chosen by measurement:

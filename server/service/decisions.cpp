@@ -141,6 +141,18 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                          ? "no visibility buffer to find the edges of directly seen emission (temporal and spatial reuse are off)"
                          : "pixels next to both emitting and non-emitting neighbours estimate what they see directly with " +
                                u(eff.direct_strata() * eff.direct_strata()) + " stratified camera samples"));
+  const bool albedo_cv = method.reuse && method.fixed_primary && eff.albedo_strata() > 1 && visibility_buffer;
+  out.push_back(make("albedo_strata", asked(req.has_albedo_strata(), u(req.albedo_strata())), u(eff.albedo_strata()), albedo_cv,
+                     !method.reuse ? no_reuse
+                     : !method.fixed_primary
+                         ? "the splat methods keep the camera sample in the sample; the control variate needs the domain's"
+                     : eff.albedo_strata() == 1 ? "off: the reflected light comes from each pixel's own camera sample"
+                     : !visibility_buffer
+                         ? "no visibility buffer to find albedo edges (temporal and spatial reuse are off)"
+                         : "pixels whose neighbours see one surface in more than one material add the albedo control variate, "
+                           "the pixel's earlier demodulated radiance times the difference between the mean albedo of " +
+                               u(eff.albedo_strata() * eff.albedo_strata()) +
+                               " stratified camera samples and the primary vertex's (docs/ARCHITECTURE.md)"));
   out.push_back(make("temporal_filter", asked(req.has_temporal_filter(), on_off(req.temporal_filter())),
                      on_off(eff.temporal_filter()), temporal && !method.splatting,
                      !method.reuse ? no_reuse

@@ -62,6 +62,7 @@ void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, cons
   check_range(o.has_disocclusion_spatial_neighbors(), o.disocclusion_spatial_neighbors(), 0, RESTIR_MAX_SPATIAL_NEIGHBORS,
               p + "disocclusion_spatial_neighbors", "0 = spatial_neighbors");
   check_range(o.has_direct_strata(), o.direct_strata(), 1, RESTIR_MAX_DIRECT_STRATA, p + "direct_strata");
+  check_range(o.has_albedo_strata(), o.albedo_strata(), 1, RESTIR_MAX_DIRECT_STRATA, p + "albedo_strata", "1 = off");
   check_float(o.has_exposure(), o.exposure(), -64.0f, 64.0f, p + "exposure");
 }
 
@@ -92,6 +93,7 @@ render::RestirOptions restir_options(const v1::RenderOptions& e) {
   r.splats_per_frame = e.splats_per_frame();
   r.disocclusion_spatial_neighbors = e.disocclusion_spatial_neighbors();
   r.direct_strata = e.direct_strata();
+  r.albedo_strata = e.albedo_strata();
   r.temporal_filter = e.temporal_filter();
   return r;
 }
@@ -126,6 +128,7 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const render
   o.set_unbiased(restir.unbiased);
   o.set_disocclusion_spatial_neighbors(restir.disocclusion_spatial_neighbors);
   o.set_direct_strata(restir.direct_strata);
+  o.set_albedo_strata(restir.albedo_strata);
   o.set_temporal_filter(restir.temporal_filter);
   o.set_splats_per_frame(1);
   o.set_exposure(0.0f);

@@ -286,6 +286,66 @@ bool near_emission_edge(uvec2 pixel) {
   return seen && unseen;
 }
 
+// The albedo control variate (docs/ARCHITECTURE.md, "The albedo control variate"): the albedo of a
+// surface the camera sees, A = diffuse + f0 of its BSDF, 0 where the ray escapes.
+vec3 cv_albedo(BsdfParams b) { return b.diffuse + b.f0; }
+
+vec3 primary_albedo(GpuPrimaryHit e) {
+  if ((e.flags & PRIMARY_HIT) == 0u) return vec3(0.0);
+  GpuMaterial m = b_materials[floatBitsToUint(e.geo_normal_material.w)];
+  return cv_albedo(make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular));
+}
+
+// Whether this pixel likely straddles an albedo edge on one surface: its 8 neighbours' entries all
+// see surfaces like the first one's (centre_surface.glsl: kind, normal, distance), with more than
+// one material among them. Silhouettes and creases, where the lighting changes with the surface, are
+// left out: there the pixel's earlier radiance predicts little. Reads the neighbours only, like
+// near_emission_edge.
+bool near_albedo_edge(uvec2 pixel) {
+  bool first = true;
+  bool differ = false;
+  uint m0 = 0u;
+  CentreSurface c0;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      ivec2 n = ivec2(pixel) + ivec2(dx, dy);
+      if ((dx == 0 && dy == 0) || n.x < 0 || n.y < 0 || n.x >= int(u_frame.width) || n.y >= int(u_frame.height)) continue;
+      GpuPrimaryHit e = b_primary[pixel_index(uvec2(n))];
+      if ((e.flags & PRIMARY_HIT) == 0u) return false;
+      CentreSurface c = centre_surface(e);
+      uint m = floatBitsToUint(e.geo_normal_material.w);
+      if (first) {
+        c0 = c;
+        m0 = m;
+        first = false;
+        continue;
+      }
+      if (!similar_surface(c0, c)) return false;
+      differ = differ || m != m0;
+    }
+  }
+  return differ;
+}
+
+// The mean albedo over G x G camera samples stratified over the pixel (G = albedo_strata), each with
+// its own lens sample and time: the same distribution as the domain's camera sample, so its
+// expectation is that of the primary vertex's albedo.
+vec3 stratified_albedo(uvec2 pixel, uint index) {
+  uint g = u_restir.albedo_strata;
+  vec3 sum = vec3(0.0);
+  for (uint s = 0u; s < g * g; ++s) {
+    CameraSample cs = camera_sample(rng_key(index, RESTIR_MAX_INITIAL_CANDIDATES + 64u + s, u_frame.frame_index, u_frame.seed));
+    cs.jitter = (vec2(float(s % g), float(s / g)) + cs.jitter) / float(g);
+    vec3 origin;
+    vec3 dir;
+    primary_ray(camera_at(false, cs.time), vec2(pixel), cs.jitter, cs.lens, origin, dir);
+    RayHit h;
+    g_rays++;
+    if (trace_closest(origin, dir, 1e30, h)) sum += cv_albedo(load_vertex(false, h, dir).bsdf);
+  }
+  return sum / float(g * g);
+}
+
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
@@ -313,6 +373,15 @@ void main() {
   if (u_restir.direct_strata > 1u && near_emission_edge(pixel)) g_primary_emission = direct_emission(pixel, index);
   store_output(domain, r, f, g_state.estimate);  // the path's contributions summed, as pt's estimate
   b_contribution[primary_emission_index(pixel)] = vec4(g_primary_emission, 0.0);
+  if (u_restir.albedo_strata > 0u) {
+    uint domains = domain_count();
+    uint pixels = u_frame.width * u_frame.height;
+    vec3 a1 = primary_albedo(b_primary[index]);
+    vec4 delta = vec4(0.0);
+    if (u_restir.albedo_strata > 1u && near_albedo_edge(pixel)) delta = vec4(stratified_albedo(pixel, index) - a1, 1.0);
+    b_contribution[contribution_cv_delta_index(index, domains, pixels)] = delta;
+    b_contribution[contribution_cv_albedo_index(index, domains, pixels)] = vec4(a1, 0.0);
+  }
   if (g_state.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], g_state.rejected);
   atomicAdd(b_counters[COUNTER_RAYS_INITIAL], g_rays);
   atomicAdd(b_counters[COUNTER_PATHS], u_restir.initial_candidates);

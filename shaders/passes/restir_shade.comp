@@ -2,8 +2,9 @@
 // Pass `shade` (stage shade): each pixel's estimate from the last pass that resampled it, the
 // conditional expectation of f(Y) W_Y (GRIS, RS-main Eq. 5) over that pass's candidates
 // (restir/gris.h, gris_stream_path), plus the initial pass's estimate of what the camera rays see directly
-// (paths of one segment, which are not resampled: restir_initial.comp), added to the accumulation
-// buffer as one sample.
+// (paths of one segment, which are not resampled: restir_initial.comp), and for the gather methods the
+// albedo control variate of pixels at albedo edges (docs/ARCHITECTURE.md, "The albedo control
+// variate"), added to the accumulation buffer as one sample.
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
@@ -11,10 +12,14 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "include/bindings.h"
 #include "include/frame_data.h"
 #include "restir/domain.h"
+#include "restir/restir_data.h"
+
+const float CV_HISTORY_FRAMES = 8.0;
 
 layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
 layout(set = 0, binding = BINDING_COUNTERS, std430) buffer Counters { uint b_counters[]; };
-layout(set = 0, binding = BINDING_CONTRIBUTION, std430) readonly buffer Contribution { vec4 b_contribution[]; };
+layout(set = 0, binding = BINDING_CONTRIBUTION, std430) buffer Contribution { vec4 b_contribution[]; };
+layout(set = 0, binding = BINDING_RESTIR, std140) uniform Restir { GpuRestirConstants u_restir; };
 layout(set = 0, binding = BINDING_ACCUM, std430) buffer Accum { vec4 b_accum[]; };
 
 void main() {
@@ -24,12 +29,30 @@ void main() {
   uint domain = domain_index(pixel, 0u, u_frame.width, u_frame.height);  // the front layer is the image
   uint pixels = u_frame.width * u_frame.height;
   uint domains = pixels;  // one layer
-  vec3 l = b_contribution[contribution_estimate_index(domain, domains, pixels)].rgb;
-  l += b_contribution[contribution_emission_index(index, domains)].rgb;
-  // A non-finite or negative estimate never reaches a pixel; it is counted.
+  vec3 reflected = b_contribution[contribution_estimate_index(domain, domains, pixels)].rgb;
+  vec3 l = reflected + b_contribution[contribution_emission_index(index, domains)].rgb;
+  // A non-finite or negative estimate never reaches a pixel; it is counted. (The albedo control
+  // variate below may then take a pixel slightly below 0: docs/ARCHITECTURE.md.)
   if (any(isnan(l)) || any(isinf(l)) || any(lessThan(l, vec3(0.0)))) {
     atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], 1u);
     l = vec3(0.0);
+    reflected = vec3(0.0);
+  }
+  if (u_restir.albedo_strata > 0u) {
+    // The albedo control variate (docs/ARCHITECTURE.md): E_hat (A_mean - A(x_1)), with E_hat the
+    // pixel's demodulated radiance of earlier frames, independent of this frame's camera samples.
+    uint hi = contribution_cv_history_index(index, domains, pixels);
+    vec4 history = (u_frame.history_flags & HISTORY_VALID) != 0u ? b_contribution[hi] : vec4(0.0);
+    if (!(history.w > 0.0) || any(isnan(history)) || any(isinf(history))) history = vec4(0.0);
+    vec4 delta = b_contribution[contribution_cv_delta_index(index, domains, pixels)];
+    if (delta.w > 0.0) l += history.rgb * delta.rgb;
+    vec3 a1 = b_contribution[contribution_cv_albedo_index(index, domains, pixels)].rgb;
+    // This frame's demodulated radiance, where the primary vertex has an albedo to divide by.
+    if (all(greaterThan(a1, vec3(1e-3)))) {
+      float n = min(history.w + 1.0, CV_HISTORY_FRAMES);
+      history = vec4(history.rgb + (reflected / a1 - history.rgb) / n, n);
+    }
+    b_contribution[hi] = history;
   }
   b_accum[index] += vec4(l, 1.0);
 }

@@ -22,6 +22,12 @@ INLINE uvec2 domain_pixel(uint index, uint width) { return uvec2(index % width, 
 // (restir/gris.h, gris_stream_path), which the shade pass adds to the image.
 INLINE uint contribution_emission_index(uint pixel, uint domains) { return domains + pixel; }
 INLINE uint contribution_estimate_index(uint domain, uint domains, uint pixels) { return domains + pixels + domain; }
+// Then per pixel the albedo control variate's terms (restir_initial.comp, restir_shade.comp): the mean
+// albedo of the pixel's stratified camera samples minus the domain primary vertex's (w: 1 where taken),
+// that vertex's albedo, and the pixel's demodulated radiance kept from frame to frame (w: frames).
+INLINE uint contribution_cv_delta_index(uint pixel, uint domains, uint pixels) { return 2u * domains + pixels + pixel; }
+INLINE uint contribution_cv_albedo_index(uint pixel, uint domains, uint pixels) { return 2u * domains + 2u * pixels + pixel; }
+INLINE uint contribution_cv_history_index(uint pixel, uint domains, uint pixels) { return 2u * domains + 3u * pixels + pixel; }
 
 STRATA_NAMESPACE_END
 #endif

@@ -38,7 +38,7 @@ struct GpuRestirConstants {
   uint disocclusion_spatial_neighbors;  // N for pixels whose reservoir holds no history (0: spatial_neighbors)
   uint direct_strata;       // G: what the camera sees directly is estimated with G x G stratified camera samples (0: the N_init candidates' camera rays)
   float still_confidence_cap;  // the cap of a domain where nothing moved (confidence_cap_of, restir_pass.glsl)
-  uint pad1;
+  uint albedo_strata;        // G: the reflected light's albedo control variate takes G x G camera samples at albedo edges (0: off)
   uint pad2;
 };
 

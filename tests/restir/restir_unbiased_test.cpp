@@ -358,6 +358,11 @@ std::vector<Case> cases() {
                .reference_spp = 128,
                .options = [](render::RestirOptions& o) { o.spatial = false; },
                .state = [](const scene::Scene& s, uint32_t) { return s.frame_state(0); }});
+  // The albedo control variate (restir_shade.comp) where it acts: chess's board, whose squares meet
+  // inside pixels; a still camera so that every frame after the first has the pixel's earlier
+  // demodulated radiance. 64 x 64: at 16 x 16 a pixel spans several squares.
+  v.push_back({.name = "albedo_cv_chess", .scene = "chess", .frames = 6, .runs = 32, .size = 64, .reference_runs = 8,
+               .reference_spp = 256, .state = [](const scene::Scene& s, uint32_t) { return s.frame_state(0); }});
   return v;
 }
 

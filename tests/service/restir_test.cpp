@@ -188,8 +188,8 @@ TEST_F(RestirTest, OptionChangesRecreateTheGpuStateAndSayWhy) {
   EXPECT_EQ(kept.options().spp(), 1u) << "the refused input changed the session";
 }
 
-// A session that names no method gets the default, restir-gather (render::k_default_method, the
-// method that wins at equal time), and its decision says so; spp != 1 then names the default and pt.
+// A session that names no method gets the default, restir-gather (render::k_default_method), and
+// its decision says so; spp != 1 then names the default and pt.
 TEST_F(RestirTest, SessionWithoutAMethodGetsTheDefaultAndSaysWhy) {
   const v1::Session s = create_ok(stub(), restir_request(""));
   EXPECT_EQ(s.method(), "restir-gather");
@@ -197,7 +197,7 @@ TEST_F(RestirTest, SessionWithoutAMethodGetsTheDefaultAndSaysWhy) {
   ASSERT_NE(method, nullptr);
   EXPECT_EQ(method->requested(), "");
   EXPECT_EQ(method->value(), "restir-gather");
-  EXPECT_NE(method->reason().find("the default: lowest error at equal GPU time"), std::string::npos) << method->reason();
+  EXPECT_NE(method->reason().find("the default: ReSTIR PT"), std::string::npos) << method->reason();
   const auto frames = stream_frames(stub(), s.name(), 2);
   ASSERT_EQ(frames.size(), 2u);
   EXPECT_TRUE(frames[1].statistics().has_reuse());

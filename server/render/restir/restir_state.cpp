@@ -28,6 +28,8 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
   c.splats_per_frame = o.splats_per_frame;
   // The edge test reads the neighbours' visibility-buffer entries: without a primary stage there are none.
   c.direct_strata = primary_stage ? o.direct_strata : 1u;
+  // The albedo control variate needs the domain's primary vertex (gather) and the neighbours' entries.
+  c.albedo_strata = primary_stage && spec.fixed_primary && o.albedo_strata > 1 ? o.albedo_strata : 0u;
   // auto replays: whether a path's suffix met a changed instance is not known without tracing it.
   c.suffix_mode = o.suffix == "fail" ? gpu::SUFFIX_FAIL : o.suffix == "cached" ? gpu::SUFFIX_CACHED : gpu::SUFFIX_REPLAY;
   // ReSTIR DI: camera, x1, light (one bounce).
@@ -62,7 +64,7 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
   history = PingPong(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (history)");
   // Per domain f(Y) of the reservoir there, per pixel what the camera rays see directly, per
   // domain the estimate the shade pass adds (restir/domain.h).
-  contribution = device_storage(ctx, sizeof(glm::vec4) * (2 * domains + uint64_t(width) * height), "contribution");
+  contribution = device_storage(ctx, sizeof(glm::vec4) * (2 * domains + 4 * uint64_t(width) * height), "contribution");
   // The temporal stages, the spatial stage's neighbour filter and, with fixed primary vertices, the
   // initial stage read the visibility buffer. Without any of them there is no primary stage, and
   // the initial pass binds one entry that it never reads (its layout has the binding).

@@ -13,8 +13,9 @@ class ShadeStage : public Stage {
   explicit ShadeStage(const RestirState& state)
       : state_(state),
         pass_(state.shared.ctx, nullptr, {}, "restir_shade",
-              {uniform(BINDING_FRAME, state.shared.constants), storage(BINDING_COUNTERS, Access::read_write, state.shared.counters),
-               storage(BINDING_CONTRIBUTION, Access::read, state.contribution),
+              {uniform(BINDING_FRAME, state.shared.constants), uniform(BINDING_RESTIR, state.constants),
+               storage(BINDING_COUNTERS, Access::read_write, state.shared.counters),
+               storage(BINDING_CONTRIBUTION, Access::read_write, state.contribution),
                storage(BINDING_ACCUM, Access::read_write, state.shared.accum)}) {}
   StageKind kind() const override { return StageKind::shade; }
   uint32_t timed_passes() const override { return 1; }
