@@ -66,6 +66,8 @@ class Session {
   const std::string& name() const { return name_; }
   const scene::Scene& scene() const { return *scene_; }
   const render::MethodSpec& method() const;
+  // The client named no method: the session took render::k_default_method.
+  bool method_defaulted() const { return spec_.requested_method.empty(); }
   v1::Session describe(const ServiceConfig& config) const;
 
   // One stream at a time: false when another one is attached.

@@ -213,6 +213,14 @@ TEST_F(RestirTest, SessionWithoutAMethodGetsTheDefaultAndSaysWhy) {
                 "options.spp = 4 but method restir-gather (the default: no method was named)", "spp 4 without a method");
   expect_status(create_session(stub(), spp, &refused), StatusCode::INVALID_ARGUMENT, "or method = \"pt\"",
                 "spp 4 without a method");
+
+  // The same in an option change of a stream on the defaulted session.
+  StreamClient c(stub());
+  v1::FrameInput change = frame_input(1, s.name(), 0);
+  change.mutable_options()->set_spp(4);
+  c.send(change);
+  EXPECT_FALSE(c.read()) << "spp = 4 was rendered by the default method";
+  expect_status(c.finish(), StatusCode::INVALID_ARGUMENT, "(the default: no method was named)", "spp change without a method");
 }
 
 // The confidence cap where something moved is the method's unless asked for (render::MethodSpec::
