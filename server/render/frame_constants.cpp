@@ -8,8 +8,8 @@ namespace strata::render {
 namespace {
 
 // The probability that NEE picks the environment: all of them when it is sampled at all
-// (environment_nee: only in scenes without emitters), none otherwise.
-float env_select_prob(bool env_nee, uint32_t emitter_count) { return env_nee && emitter_count == 0 ? 1.0f : 0.0f; }
+// (environment_nee: only in scenes without emitters, so in every frame), none otherwise.
+float env_select_prob(bool env_nee) { return env_nee ? 1.0f : 0.0f; }
 
 }  // namespace
 
@@ -66,7 +66,7 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   c.time_partitions = time_partitions(frame, setup.splats_per_frame);
   c.emitter_count = scene.emitter_count();
   c.total_emitter_power = float(scene.total_emitter_power());
-  c.env_select_prob = env_select_prob(setup.env_nee, c.emitter_count);
+  c.env_select_prob = env_select_prob(setup.env_nee);
 
   // The previous frame (docs/ARCHITECTURE.md, State, session state): the one the scene's previous slot
   // holds, at the same resolution (a session's image size is fixed). After the first update that
@@ -75,7 +75,7 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   c.prev_camera = make_camera(prev.camera, setup.width, setup.height);
   c.prev_shutter = make_shutter(prev);
   c.prev_total_emitter_power = float(scene.prev_total_emitter_power());
-  c.prev_env_select_prob = env_select_prob(setup.env_nee, scene.prev_emitter_count());
+  c.prev_env_select_prob = env_select_prob(setup.env_nee);
   c.prev_width = setup.width;
   c.prev_height = setup.height;
   if (scene.history_valid()) {

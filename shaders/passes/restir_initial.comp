@@ -262,28 +262,9 @@ vec3 direct_emission(uvec2 pixel, uint index) {
   return sum / float(g * g);
 }
 
-// Whether this pixel is likely to straddle the edge of something the camera sees emitting (an
-// emitter, or the environment between objects): among its 8 neighbours' visibility-buffer entries
-// some see emission directly and some do not. It reads the neighbours only, never this pixel's own
-// camera sample, so the choice below leaves either estimate of the pixel unbiased.
 bool sees_emission(GpuPrimaryHit h) {
   if ((h.flags & PRIMARY_HIT) == 0u) return luminance(u_frame.environment.rgb) > 0.0;
   return (floatBitsToUint(h.shading_normal_kind.w) & SURFACE_KIND_EMISSIVE) != 0u;
-}
-
-bool near_emission_edge(uvec2 pixel) {
-  bool seen = false;
-  bool unseen = false;
-  for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) {
-      ivec2 n = ivec2(pixel) + ivec2(dx, dy);
-      if ((dx == 0 && dy == 0) || n.x < 0 || n.y < 0 || n.x >= int(u_frame.width) || n.y >= int(u_frame.height)) continue;
-      bool e = sees_emission(b_primary[pixel_index(uvec2(n))]);
-      seen = seen || e;
-      unseen = unseen || !e;
-    }
-  }
-  return seen && unseen;
 }
 
 // The albedo control variate (docs/ARCHITECTURE.md, "The albedo control variate"): the albedo of a
@@ -296,14 +277,26 @@ vec3 primary_albedo(GpuPrimaryHit e) {
   return cv_albedo(make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular));
 }
 
-// Whether this pixel likely straddles an albedo edge on one surface: its 8 neighbours' entries all
-// see surfaces like the first one's (centre_surface.glsl: kind, normal, distance), with more than
-// one material among them. Silhouettes and creases, where the lighting changes with the surface, are
-// left out: there the pixel's earlier radiance predicts little. Reads the neighbours only, like
-// near_emission_edge.
-bool near_albedo_edge(uvec2 pixel) {
-  bool first = true;
+// What this pixel's 8 neighbours' visibility-buffer entries say about the edges it may straddle,
+// read in one pass over them. Only the neighbours, never this pixel's own camera sample, so the
+// choices below leave every estimate of the pixel unbiased.
+struct Edges {
+  // Something the camera sees emitting (an emitter, or the environment between objects): some
+  // neighbours see emission directly and some do not.
+  bool emission;
+  // An albedo edge on one surface: every neighbour sees a surface like the first one's
+  // (centre_surface.glsl: kind, normal, distance), in more than one material. Silhouettes and
+  // creases, where the lighting changes with the surface, are left out: there the pixel's earlier
+  // radiance predicts little (the albedo control variate).
+  bool albedo;
+};
+
+Edges neighbourhood_edges(uvec2 pixel) {
+  bool seen = false;
+  bool unseen = false;
+  bool one_surface = true;
   bool differ = false;
+  bool first = true;
   uint m0 = 0u;
   CentreSurface c0;
   for (int dy = -1; dy <= 1; ++dy) {
@@ -311,20 +304,24 @@ bool near_albedo_edge(uvec2 pixel) {
       ivec2 n = ivec2(pixel) + ivec2(dx, dy);
       if ((dx == 0 && dy == 0) || n.x < 0 || n.y < 0 || n.x >= int(u_frame.width) || n.y >= int(u_frame.height)) continue;
       GpuPrimaryHit e = b_primary[pixel_index(uvec2(n))];
-      if ((e.flags & PRIMARY_HIT) == 0u) return false;
+      bool emits = sees_emission(e);
+      seen = seen || emits;
+      unseen = unseen || !emits;
       CentreSurface c = centre_surface(e);
       uint m = floatBitsToUint(e.geo_normal_material.w);
       if (first) {
         c0 = c;
         m0 = m;
         first = false;
-        continue;
       }
-      if (!similar_surface(c0, c)) return false;
+      one_surface = one_surface && c.valid && similar_surface(c0, c);
       differ = differ || m != m0;
     }
   }
-  return differ;
+  Edges edges;
+  edges.emission = seen && unseen;
+  edges.albedo = one_surface && differ;
+  return edges;
 }
 
 // The mean albedo over G x G camera samples stratified over the pixel (G = albedo_strata), each with
@@ -370,7 +367,11 @@ void main() {
     r.confidence = 1.0;
     f = vec3(0.0);
   }
-  if (u_restir.direct_strata > 1u && near_emission_edge(pixel)) g_primary_emission = direct_emission(pixel, index);
+  Edges edges;
+  edges.emission = false;
+  edges.albedo = false;
+  if (u_restir.direct_strata > 1u || u_restir.albedo_strata > 0u) edges = neighbourhood_edges(pixel);
+  if (u_restir.direct_strata > 1u && edges.emission) g_primary_emission = direct_emission(pixel, index);
   store_output(domain, r, f, g_state.estimate);  // the path's contributions summed, as pt's estimate
   b_contribution[primary_emission_index(pixel)] = vec4(g_primary_emission, 0.0);
   if (u_restir.albedo_strata > 0u) {
@@ -378,7 +379,7 @@ void main() {
     uint pixels = u_frame.width * u_frame.height;
     vec3 a1 = primary_albedo(b_primary[index]);
     vec4 delta = vec4(0.0);
-    if (u_restir.albedo_strata > 1u && near_albedo_edge(pixel)) delta = vec4(stratified_albedo(pixel, index) - a1, 1.0);
+    if (edges.albedo) delta = vec4(stratified_albedo(pixel, index) - a1, 1.0);
     b_contribution[contribution_cv_delta_index(index, domains, pixels)] = delta;
     b_contribution[contribution_cv_albedo_index(index, domains, pixels)] = vec4(a1, 0.0);
   }
