@@ -33,13 +33,15 @@
 // The spatial stage's pixels without history, run apart in a dense list (restir_spatial.comp):
 #define BINDING_SPATIAL_LIST 27    // pixel indices
 #define BINDING_SPATIAL_ARGS 28    // VkDispatchIndirectCommand (workgroups) and the list's length
+#define BINDING_SPATIAL_PAIRS 29   // per pixel and pair slot: the paired neighbour's sample shifted into it (PairShift)
 
 // Specialization constants of the passes (constant_id).
 #define SPEC_THIN_LENS 0
 #define SPEC_ENV_NEE 1
 #define SPEC_EMITTERS 2
 #define SPEC_MOTION_BLUR 3
-#define SPEC_SPATIAL_LIST 4     // restir_spatial.comp: this dispatch runs the list of pixels without history
-#define SPEC_SPATIAL_COMPACT 5  // restir_spatial.comp: pixels without history go to that list
+#define SPEC_SPATIAL_LIST 4     // restir_spatial.comp: this dispatch runs the list
+#define SPEC_SPATIAL_COMPACT 5  // restir_spatial.comp: pixels that draw neighbours at random go to that list
+#define SPEC_SPATIAL_PAIRS 6    // restir_spatial.comp: the first two neighbours are the frame's pair (restir/spatial_pairs.glsl)
 
 #endif

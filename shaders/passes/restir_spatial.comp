@@ -7,7 +7,9 @@
 // neighbours"): the choice of domains depends on geometry only, never on a reservoir, so the MIS
 // weights below still sum to one over the chosen domains and the estimate stays unbiased. MIS is either the generalized balance heuristic over all
 // N + 1 domains (RS-main Eq. 6/7; every candidate is shifted into every other domain: O(N^2)
-// shifts) or confidence-weighted pairwise MIS (restir/gris.h; O(N) shifts).
+// shifts) or confidence-weighted pairwise MIS (restir/gris.h; O(N) shifts). With pairwise MIS the
+// first neighbours are the frame's pairs (restir/spatial_pairs.glsl): their shifts both ways were
+// made once by restir_spatial_pairs.comp, and only the neighbours drawn at random are shifted here.
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
 
@@ -22,18 +24,22 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(set = 0, binding = BINDING_RESERVOIRS_IN, std430) readonly buffer ReservoirsIn { PackedReservoir b_in[]; };
 layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
-// Pixels without history take disocclusion_spatial_neighbors. Run among the others, one such pixel
-// holds up every lane of its SIMD group for its extra neighbours (lavapipe runs 8 pixels in
-// lock-step, a GPU 32), so with k_compact the image dispatch only lists them, and a second,
-// indirect dispatch (k_list) runs the list densely. A pixel's result is the same either way: its
-// random streams are keyed by the pixel.
+// Pixels that draw neighbours at random (without pairs: those without history, which take
+// disocclusion_spatial_neighbors; with pairs: every pixel whose pair does not fill its count) trace
+// rays here. Run among the others, one such pixel holds up every lane of its SIMD group (lavapipe
+// runs 8 pixels in lock-step, a GPU 32), so with k_compact the image dispatch only lists them, and a
+// second, indirect dispatch (k_list) runs the list densely. A pixel's result is the same either way:
+// its random streams are keyed by the pixel.
 layout(constant_id = SPEC_SPATIAL_LIST) const bool k_list = false;
 layout(constant_id = SPEC_SPATIAL_COMPACT) const bool k_compact = false;
 layout(set = 0, binding = BINDING_SPATIAL_LIST, std430) buffer SpatialList { uint b_list[]; };
 // x, y, z: the list dispatch's workgroups (y = z = 1, set by the host); w: the list's length.
 layout(set = 0, binding = BINDING_SPATIAL_ARGS, std430) buffer SpatialArgs { uvec4 b_args; };
 
+#include "restir/spatial_pairs.glsl"
+
 uint g_rays = 0u;
+const uint NO_PAIR = 0xFFFFFFFFu;
 
 // The capped confidence of reservoir r of domain `domain` (this frame; restir_pass.glsl).
 float confidence_of(Reservoir r, uint domain) {
@@ -55,23 +61,7 @@ void main() {
   bool centre_valid = reservoir_valid(centre);
   float c_c = confidence_capped(centre.confidence, confidence_cap_of(b_primary[pixel_index(pixel)]));
   bool no_history = centre.confidence < 1.5;
-  if (k_compact && !k_list && no_history && (b_primary[pixel_index(pixel)].flags & PRIMARY_HIT) != 0u) {
-    uint item = atomicAdd(b_args.w, 1u);
-    b_list[item] = pixel_index(pixel);
-    atomicMax(b_args.x, item / (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + 1u);
-    return;
-  }
-
-  // Neighbours: uniform in the disk, rounded to pixels, inside the image and not this pixel, and
-  // seeing a surface like this pixel's; each slot draws up to RESTIR_SPATIAL_TRIES candidates. A
-  // pixel that sees no surface has no path to reuse into and takes no neighbours.
-  Rng rng = rng_init(pixel_index(pixel), 0x5A71A1u, u_frame.frame_index, u_frame.seed);
   CentreSurface here = centre_surface(b_primary[pixel_index(pixel)]);
-  uint count = 0u;
-  uint filtered = 0u;
-  uint nb[RESTIR_MAX_SPATIAL_NEIGHBORS];
-  float c_nb[RESTIR_MAX_SPATIAL_NEIGHBORS];  // their capped confidences, read once here
-  float c_total = c_c;
   // A pixel whose reservoir holds no history (disoccluded, or the first frame: its confidence is the
   // canonical sample's alone) takes disocclusion_spatial_neighbors. Confidence depends on geometry
   // only (backprojection and the neighbour filter), never on a sample, so the choice of domains
@@ -79,21 +69,63 @@ void main() {
   uint wanted = u_restir.spatial_neighbors;
   if (no_history && u_restir.disocclusion_spatial_neighbors > 0u) wanted = u_restir.disocclusion_spatial_neighbors;
   uint slots = here.valid ? min(wanted, RESTIR_MAX_SPATIAL_NEIGHBORS) : 0u;
-  for (uint j = 0u; j < slots; ++j) {
+
+  uint count = 0u;
+  uint filtered = 0u;
+  uint nb[RESTIR_MAX_SPATIAL_NEIGHBORS];
+  uint pair_slot[RESTIR_MAX_SPATIAL_NEIGHBORS];  // the pair slot of a paired neighbour, else NO_PAIR
+  float c_nb[RESTIR_MAX_SPATIAL_NEIGHBORS];      // their capped confidences, read once here
+  float c_total = c_c;
+  // The pairs first: i + o_m and i - o_m where the surfaces are alike both ways.
+  bool pairs = k_pair_offsets > 0u;
+  ivec2 o_pair[SPATIAL_MAX_PAIR_OFFSETS];
+  spatial_pair_offsets(o_pair);
+  for (uint s = 0u; s < pair_slots() && count < slots; ++s) {
+    uvec2 q;
+    ivec2 p = ivec2(pixel) + pair_direction(o_pair, s);
+    if (paired_with(pixel, pair_direction(o_pair, s), here, q)) {
+      nb[count] = domain_of(q, 0u);
+      pair_slot[count] = s;
+      count++;
+    } else if (all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, ivec2(u_frame.width, u_frame.height)))) {
+      filtered++;
+    }
+  }
+  bool list_it = pairs ? count < slots : no_history;
+  if (k_compact && !k_list && list_it && (b_primary[pixel_index(pixel)].flags & PRIMARY_HIT) != 0u) {
+    uint item = atomicAdd(b_args.w, 1u);
+    b_list[item] = pixel_index(pixel);
+    atomicMax(b_args.x, item / (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + 1u);
+    return;
+  }
+
+  // The other neighbours: uniform in the disk, rounded to pixels, inside the image, not this pixel
+  // nor one of its pairs, and seeing a surface like this pixel's; each slot draws up to
+  // RESTIR_SPATIAL_TRIES candidates. A pixel that sees no surface has no path to reuse into and
+  // takes no neighbours.
+  Rng rng = rng_init(pixel_index(pixel), 0x5A71A1u, u_frame.frame_index, u_frame.seed);
+  for (uint j = count; j < slots; ++j) {
     for (uint t = 0u; t < RESTIR_SPATIAL_TRIES; ++t) {
       vec2 o = sample_concentric_disk(rng_next_float2(rng)) * u_restir.spatial_radius;
-      ivec2 p = ivec2(pixel) + ivec2(round(o));
+      ivec2 d = ivec2(round(o));
+      ivec2 p = ivec2(pixel) + d;
       if (p.x < 0 || p.y < 0 || p.x >= int(u_frame.width) || p.y >= int(u_frame.height) || p == ivec2(pixel)) continue;
+      bool paired = false;
+      for (uint m = 0u; m < min(k_pair_offsets, SPATIAL_MAX_PAIR_OFFSETS); ++m) paired = paired || d == o_pair[m] || d == -o_pair[m];
+      if (paired) continue;
       if (!similar_surface(here, centre_surface(b_primary[pixel_index(uvec2(p))]))) {
         filtered++;
         continue;
       }
       nb[count] = domain_of(uvec2(p), 0u);
-      c_nb[count] = confidence_of(unpack_reservoir(b_in[nb[count]]), nb[count]);
-      c_total += c_nb[count];
+      pair_slot[count] = NO_PAIR;
       count++;
       break;
     }
+  }
+  for (uint j = 0u; j < count; ++j) {
+    c_nb[j] = confidence_of(unpack_reservoir(b_in[nb[j]]), nb[j]);
+    c_total += c_nb[j];
   }
   if (filtered > 0u) atomicAdd(b_counters[COUNTER_SPATIAL_FILTERED], filtered);
   float k = float(count);
@@ -146,8 +178,20 @@ void main() {
     }
     ShiftResult res;
     res.reason = SHIFT_FAIL_ZERO;
-    if (run) {
-      uvec2 tp = domain_pixel(target, u_frame.width);
+    uvec2 tp = domain_pixel(target, u_frame.width);
+    if (run && pairs && pair_slot[j] != NO_PAIR) {
+      // A paired neighbour: y_j into this pixel is this pixel's record of j's slot; the centre
+      // sample into j is j's record of the opposite slot (restir_spatial_pairs.comp).
+      uint slot = pair_slot[j];
+      uvec2 at = centre_job ? domain_pixel(nb[j], u_frame.width) : pixel;
+      DomainPrimary dp = domain_primary(b_primary[pixel_index(at)]);
+      CameraSample camera;
+      camera.jitter = y.jitter;
+      camera.lens = y.lens;
+      camera.time = y.time;
+      if (dp.is_fixed) camera = primary_camera_sample(dp.hit);
+      res = load_pair(at, centre_job ? slot ^ 1u : slot, camera);
+    } else if (run) {
       res = shift_path(false, vec2(tp), domain_primary(b_primary[pixel_index(tp)]), y, false);
       g_rays += res.rays;
       atomicAdd(b_counters[COUNTER_SPATIAL_SHIFTS], 1u);
