@@ -54,13 +54,13 @@ std::string method_help();
 // The method a session, `stratad render` and `strata stream` use when none is named (issue 13 point
 // 5 made it the default when it won at equal time against a pt whose light selection wasted half its
 // samples; against the fixed pt it wins on cornell only: k_default_method_reason, measured in
-// docs/BENCHMARKS.md, "pt's light selection, temporal reuse on sub-pixel geometry, the albedo
-// control variate"). Whether pt should be the default again is the steering side's call (issue 13).
+// docs/BENCHMARKS.md, "Paired spatial neighbours"). Whether pt should be the default again is the
+// steering side's call (issue 13).
 inline constexpr const char* k_default_method = "restir-gather";
 // Why, as the session's `method` decision says it when the client named none.
 inline constexpr const char* k_default_method_reason =
     "the default: ReSTIR PT, the method the service is built for; its RelMSE over pt's at equal GPU time on lavapipe, "
-    "256x256: cornell 0.30, carousel 1.1, chess 1.4, foliage 3.4 (docs/BENCHMARKS.md); pt wins where reuse costs "
+    "256x256: cornell 0.30, carousel 0.94, chess 1.1-1.5, foliage 3.1 (docs/BENCHMARKS.md); pt wins where reuse costs "
     "as much as the samples it replaces";
 
 }  // namespace strata::render
