@@ -237,16 +237,19 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
   }
 }
 
-// What the camera sees directly (x_1's emission, or the environment when the ray escapes), by
-// G x G camera samples stratified over the pixel (G = direct_strata), each with its own lens sample
-// and time. Its mean is the same integral as the single camera ray's; stratification removes most
-// of the variance at the edges of bright, directly visible surfaces (a pixel that sees a light over
-// 2% of its area otherwise shows the whole light in 2% of its frames).
-vec3 direct_emission(uvec2 pixel, uint index) {
-  uint g = u_restir.direct_strata;
+// The albedo control variate (docs/ARCHITECTURE.md, "The albedo control variate"): the albedo of a
+// surface the camera sees, A = diffuse + f0 of its BSDF, 0 where the ray escapes.
+vec3 cv_albedo(BsdfParams b) { return b.diffuse + b.f0; }
+
+// What the camera sees at the pixel, averaged over G x G camera samples stratified over it, each
+// with its own lens sample and time (random streams first_stream + s): the same distribution as the
+// domain's camera sample, so the mean has the same expectation. `albedo`: the albedo of the surface
+// seen (cv_albedo; 0 where the ray escapes); else what it sees emitting (x_1's emission, or the
+// environment where the ray escapes).
+vec3 stratified_mean(uvec2 pixel, uint index, uint g, uint first_stream, bool albedo) {
   vec3 sum = vec3(0.0);
   for (uint s = 0u; s < g * g; ++s) {
-    CameraSample cs = camera_sample(rng_key(index, RESTIR_MAX_INITIAL_CANDIDATES + s, u_frame.frame_index, u_frame.seed));
+    CameraSample cs = camera_sample(rng_key(index, first_stream + s, u_frame.frame_index, u_frame.seed));
     cs.jitter = (vec2(float(s % g), float(s / g)) + cs.jitter) / float(g);
     vec3 origin;
     vec3 dir;
@@ -254,22 +257,27 @@ vec3 direct_emission(uvec2 pixel, uint index) {
     RayHit h;
     g_rays++;
     if (!trace_closest(origin, dir, 1e30, h)) {
-      sum += u_frame.environment.rgb;
+      if (!albedo) sum += u_frame.environment.rgb;
       continue;
     }
-    sum += load_vertex(false, h, dir).emission;
+    Vertex v = load_vertex(false, h, dir);
+    sum += albedo ? cv_albedo(v.bsdf) : v.emission;
   }
   return sum / float(g * g);
+}
+
+// What the camera sees directly, by G x G stratified camera samples (G = direct_strata). Its mean is
+// the same integral as the single camera ray's; stratification removes most of the variance at the
+// edges of bright, directly visible surfaces (a pixel that sees a light over 2% of its area
+// otherwise shows the whole light in 2% of its frames).
+vec3 direct_emission(uvec2 pixel, uint index) {
+  return stratified_mean(pixel, index, u_restir.direct_strata, RESTIR_MAX_INITIAL_CANDIDATES, false);
 }
 
 bool sees_emission(GpuPrimaryHit h) {
   if ((h.flags & PRIMARY_HIT) == 0u) return luminance(u_frame.environment.rgb) > 0.0;
   return (floatBitsToUint(h.shading_normal_kind.w) & SURFACE_KIND_EMISSIVE) != 0u;
 }
-
-// The albedo control variate (docs/ARCHITECTURE.md, "The albedo control variate"): the albedo of a
-// surface the camera sees, A = diffuse + f0 of its BSDF, 0 where the ray escapes.
-vec3 cv_albedo(BsdfParams b) { return b.diffuse + b.f0; }
 
 vec3 primary_albedo(GpuPrimaryHit e) {
   if ((e.flags & PRIMARY_HIT) == 0u) return vec3(0.0);
@@ -324,23 +332,10 @@ Edges neighbourhood_edges(uvec2 pixel) {
   return edges;
 }
 
-// The mean albedo over G x G camera samples stratified over the pixel (G = albedo_strata), each with
-// its own lens sample and time: the same distribution as the domain's camera sample, so its
-// expectation is that of the primary vertex's albedo.
+// The mean albedo over G x G stratified camera samples (G = albedo_strata): its expectation is that
+// of the primary vertex's albedo.
 vec3 stratified_albedo(uvec2 pixel, uint index) {
-  uint g = u_restir.albedo_strata;
-  vec3 sum = vec3(0.0);
-  for (uint s = 0u; s < g * g; ++s) {
-    CameraSample cs = camera_sample(rng_key(index, RESTIR_MAX_INITIAL_CANDIDATES + 64u + s, u_frame.frame_index, u_frame.seed));
-    cs.jitter = (vec2(float(s % g), float(s / g)) + cs.jitter) / float(g);
-    vec3 origin;
-    vec3 dir;
-    primary_ray(camera_at(false, cs.time), vec2(pixel), cs.jitter, cs.lens, origin, dir);
-    RayHit h;
-    g_rays++;
-    if (trace_closest(origin, dir, 1e30, h)) sum += cv_albedo(load_vertex(false, h, dir).bsdf);
-  }
-  return sum / float(g * g);
+  return stratified_mean(pixel, index, u_restir.albedo_strata, RESTIR_MAX_INITIAL_CANDIDATES + 64u, true);
 }
 
 void main() {

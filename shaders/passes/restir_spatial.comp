@@ -81,13 +81,13 @@ void main() {
   ivec2 o_pair[SPATIAL_MAX_PAIR_OFFSETS];
   spatial_pair_offsets(o_pair);
   for (uint s = 0u; s < pair_slots() && count < slots; ++s) {
-    uvec2 q;
     ivec2 p = ivec2(pixel) + pair_direction(o_pair, s);
-    if (paired_with(pixel, pair_direction(o_pair, s), here, q)) {
-      nb[count] = domain_of(q, 0u);
+    if (!in_image(p)) continue;
+    if (similar_pair(here, centre_surface(b_primary[pixel_index(uvec2(p))]))) {
+      nb[count] = domain_of(uvec2(p), 0u);
       pair_slot[count] = s;
       count++;
-    } else if (all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, ivec2(u_frame.width, u_frame.height)))) {
+    } else {
       filtered++;
     }
   }
@@ -109,7 +109,7 @@ void main() {
       vec2 o = sample_concentric_disk(rng_next_float2(rng)) * u_restir.spatial_radius;
       ivec2 d = ivec2(round(o));
       ivec2 p = ivec2(pixel) + d;
-      if (p.x < 0 || p.y < 0 || p.x >= int(u_frame.width) || p.y >= int(u_frame.height) || p == ivec2(pixel)) continue;
+      if (!in_image(p) || p == ivec2(pixel)) continue;
       bool paired = false;
       for (uint m = 0u; m < min(k_pair_offsets, SPATIAL_MAX_PAIR_OFFSETS); ++m) paired = paired || d == o_pair[m] || d == -o_pair[m];
       if (paired) continue;
@@ -184,13 +184,7 @@ void main() {
       // sample into j is j's record of the opposite slot (restir_spatial_pairs.comp).
       uint slot = pair_slot[j];
       uvec2 at = centre_job ? domain_pixel(nb[j], u_frame.width) : pixel;
-      DomainPrimary dp = domain_primary(b_primary[pixel_index(at)]);
-      CameraSample camera;
-      camera.jitter = y.jitter;
-      camera.lens = y.lens;
-      camera.time = y.time;
-      if (dp.is_fixed) camera = primary_camera_sample(dp.hit);
-      res = load_pair(at, centre_job ? slot ^ 1u : slot, camera);
+      res = load_pair(at, centre_job ? slot ^ 1u : slot, shift_camera(domain_primary(b_primary[pixel_index(at)]), y));
     } else if (run) {
       res = shift_path(false, vec2(tp), domain_primary(b_primary[pixel_index(tp)]), y, false);
       g_rays += res.rays;

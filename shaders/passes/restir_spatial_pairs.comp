@@ -31,9 +31,9 @@ void main() {
   // One shift_path call site for every slot (lavapipe compiles every inlined call separately).
   for (uint slot = 0u; slot < pair_slots(); ++slot) {
     ShiftResult s = shift_none(SHIFT_FAIL_ZERO);
-    uvec2 q;
-    if (here.valid && paired_with(pixel, pair_direction(o, slot), here, q)) {
-      Reservoir r = unpack_reservoir(b_in[domain_of(q, 0u)]);
+    ivec2 q = ivec2(pixel) + pair_direction(o, slot);
+    if (here.valid && in_image(q) && similar_pair(here, centre_surface(b_primary[pixel_index(uvec2(q))]))) {
+      Reservoir r = unpack_reservoir(b_in[domain_of(uvec2(q), 0u)]);
       if (reservoir_valid(r)) {
         s = shift_path(false, vec2(pixel), dp, r.y, false);
         rays += s.rays;

@@ -127,6 +127,17 @@ ShiftResult shift_fail(ShiftResult r, uint reason) {
   return r;
 }
 
+// The offset path's camera sample in the target domain: the domain's own where its primary vertex is
+// fixed, else the sample's (kept by the shift: Jacobian 1).
+CameraSample shift_camera(DomainPrimary dp, PathSample y) {
+  if (dp.is_fixed) return primary_camera_sample(dp.hit);
+  CameraSample c;
+  c.jitter = y.jitter;
+  c.lens = y.lens;
+  c.time = y.time;
+  return c;
+}
+
 // Jacobian |dy/dx| of a shift from a path of replay density `base` to one of density `offset`,
 // bounded like every other Jacobian (thresholds.h); 0 fails the shift.
 float shift_jacobian(float base, float offset) {
@@ -205,10 +216,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
   // ends at y_{k-1}; with k = 0 its last segment finds the path's end.
   // (A single tracing call site: lavapipe inlines a BVH traversal per call site.)
   uint last_traced = k >= 2u ? k - 2u : n - 1u;
-  r.camera.jitter = y.jitter;
-  r.camera.lens = y.lens;
-  r.camera.time = y.time;
-  if (dp.is_fixed) r.camera = primary_camera_sample(dp.hit);
+  r.camera = shift_camera(dp, y);
   vec3 origin;
   vec3 dir;
   primary_ray(camera_at(prev, r.camera.time), pixel, r.camera.jitter, r.camera.lens, origin, dir);

@@ -18,6 +18,7 @@ layout(set = 0, binding = BINDING_CONTRIBUTION, std430) buffer Contribution { ve
 
 // Per-pixel data (random streams, the visibility buffer): row-major pixel index.
 uint pixel_index(uvec2 p) { return p.y * u_frame.width + p.x; }
+bool in_image(ivec2 p) { return p.x >= 0 && p.y >= 0 && p.x < int(u_frame.width) && p.y < int(u_frame.height); }
 
 // Per-domain data (reservoirs, contributions, splat keys) is indexed by domain_index only
 // (restir/domain.h): the domain of layer `layer` at a pixel of the current or the previous frame.

@@ -52,13 +52,6 @@ ivec2 pair_direction(ivec2 o[SPATIAL_MAX_PAIR_OFFSETS], uint slot) {
 // The filter both ways (similar_surface measures the depth against the first argument's).
 bool similar_pair(CentreSurface a, CentreSurface b) { return similar_surface(a, b) && similar_surface(b, a); }
 
-// Whether `pixel` (centre surface `here`) pairs with pixel + d; q receives that pixel.
-bool paired_with(uvec2 pixel, ivec2 d, CentreSurface here, out uvec2 q) {
-  ivec2 p = ivec2(pixel) + d;
-  q = uvec2(max(p, ivec2(0)));
-  if (p.x < 0 || p.y < 0 || p.x >= int(u_frame.width) || p.y >= int(u_frame.height)) return false;
-  return similar_pair(here, centre_surface(b_primary[pixel_index(q)]));
-}
 
 uint pair_record(uvec2 pixel, uint slot) { return pixel_index(pixel) * pair_slots() + slot; }
 
