@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -24,6 +25,7 @@ GpuScene::GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep
     slot.instances = gpu::Buffer(ctx, std::max<size_t>(16, sizeof(gpu::GpuInstance) * scene.instances.size()),
                                  gpu::k_storage_usage, gpu::Memory::Host, "instances");
   }
+  if (keep_history) swept_ = gpu::Buffer(ctx, sizeof(gpu::GpuSweptBoxes), gpu::k_storage_usage, gpu::Memory::Host, "swept boxes");
   // Emitter capacity: the most emissive triangles any LoD choice can produce.
   size_t capacity = 0;
   for (const auto& inst : scene.instances) {
@@ -54,7 +56,13 @@ void GpuScene::upload_geometry() {
   std::vector<std::vector<Range>> ranges(scene_.meshes.size());
   for (size_t m = 0; m < scene_.meshes.size(); ++m) {
     mesh_primitive_base_.push_back(uint32_t(prims.size()));
+    glm::vec3 lo(std::numeric_limits<float>::max());
+    glm::vec3 hi(-std::numeric_limits<float>::max());
     for (const auto& p : scene_.meshes[m].primitives) {
+      for (const auto& x : p.positions) {
+        lo = glm::min(lo, x);
+        hi = glm::max(hi, x);
+      }
       Range r{uint32_t(vertices.size()), uint32_t(p.positions.size()), uint32_t(indices.size()), uint32_t(p.triangle_count())};
       for (size_t v = 0; v < p.positions.size(); ++v)
         vertices.push_back({glm::vec4(p.positions[v], p.uvs[v].x), glm::vec4(p.normals[v], p.uvs[v].y)});
@@ -62,6 +70,7 @@ void GpuScene::upload_geometry() {
       prims.push_back({r.vertex_offset, r.index_offset, r.triangle_count, p.material});
       ranges[m].push_back(r);
     }
+    mesh_bounds_.push_back({lo, hi});
   }
   std::vector<gpu::GpuMaterial> mats;
   for (const auto& m : scene_.materials) {
@@ -122,6 +131,8 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
     ++seed_builds_;
   }
   moved_ = std::any_of(changes_.begin(), changes_.end(), [](uint32_t c) { return c != 0; });
+  if (keeps_history()) upload_swept_boxes(frame, origin);
+  last_origin_ = origin;
   if (frames_ > 0) previous_ = std::move(current_);
   else previous_ = frame;
   current_ = frame;
@@ -151,6 +162,44 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
   emitters_.upload(table.emitters.data(), table.emitters.size() * sizeof(gpu::GpuEmitter));
   alias_.upload(table.alias.data(), table.alias.size() * sizeof(gpu::GpuAliasEntry));
   return origin;
+}
+
+std::pair<glm::dvec3, glm::dvec3> GpuScene::world_bounds(const scene::FrameState& frame, size_t i) const {
+  const auto& [lo, hi] = mesh_bounds_[scene_.instances[i].lod_meshes[frame.lods[i]]];
+  const glm::dmat4 m(frame.transforms[i]);
+  glm::dvec3 wlo(std::numeric_limits<double>::max());
+  glm::dvec3 whi(-std::numeric_limits<double>::max());
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+    const glm::dvec3 w(m * glm::dvec4(corner, 1.0));
+    wlo = glm::min(wlo, w);
+    whi = glm::max(whi, w);
+  }
+  return {wlo, whi};
+}
+
+// Called after changes_ holds this frame's changes and before current_ becomes the previous frame.
+void GpuScene::upload_swept_boxes(const scene::FrameState& frame, glm::dvec3 origin) {
+  gpu::GpuSweptBoxes boxes{};
+  boxes.prev_to_current = glm::vec4(glm::vec3(frames_ > 0 ? last_origin_ - origin : glm::dvec3(0.0)), 0.0f);
+  uint32_t n = 0;
+  for (size_t i = 0; i < changes_.size(); ++i) {
+    if (changes_[i] == 0) continue;
+    if (n < gpu::SWEPT_BOXES_MAX) {
+      auto [lo, hi] = world_bounds(frame, i);
+      const auto [plo, phi] = world_bounds(current_, i);  // the previous frame (current_ until the caller moves it)
+      lo = glm::min(lo, plo) - origin;
+      hi = glm::max(hi, phi) - origin;
+      // Padded for the float rounding of render-space positions and of prev_to_current.
+      const double pad = 1e-4 * (glm::length(hi - lo) + glm::length(hi + lo)) + 1e-6;
+      boxes.lo[n] = glm::vec4(glm::vec3(lo - pad), 0.0f);
+      boxes.hi[n] = glm::vec4(glm::vec3(hi + pad), 0.0f);
+    }
+    ++n;
+  }
+  boxes.count = n;
+  swept_count_ = n;
+  swept_.upload(&boxes, sizeof boxes);
 }
 
 bool GpuScene::LightSelection::same_as(const LightSelection& o) const {
@@ -199,6 +248,7 @@ std::vector<gpu::Binding> GpuScene::bindings(bool with_lights, bool with_history
   if (with_history) {
     b.push_back({BINDING_TLAS_PREV, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR});
     b.push_back({BINDING_INSTANCES_PREV, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+    b.push_back({BINDING_SWEPT_BOXES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   }
   return b;
 }
@@ -223,6 +273,7 @@ void GpuScene::bind(gpu::DescriptorSet& set, bool with_lights, bool with_history
     const Slot& previous = slots_[size_t(1 - parity)];
     set.bind_tlas(BINDING_TLAS_PREV, previous.tlas->handle());
     set.bind_buffer(BINDING_INSTANCES_PREV, previous.instances);
+    set.bind_buffer(BINDING_SWEPT_BOXES, swept_);
   }
 }
 
@@ -235,6 +286,7 @@ SceneMemory GpuScene::memory() const {
   m.per_frame = first.instances.size() + emitters_.size() + alias_.size();
   for (size_t i = 1; i < slots_.size(); ++i)
     m.history += slots_[i].tlas->bytes() + slots_[i].tlas->scratch_bytes() + slots_[i].instances.size();
+  if (keeps_history()) m.history += swept_.size();
   return m;
 }
 

@@ -62,6 +62,9 @@ class GpuScene {
   uint32_t changed_instances() const {
     return uint32_t(std::count_if(changes_.begin(), changes_.end(), [](uint32_t c) { return c != 0; }));
   }
+  // With history: the swept boxes of the instances that changed (GpuSweptBoxes), bound as
+  // BINDING_SWEPT_BOXES; swept_boxes() is how many were listed (SWEPT_BOXES_MAX + 1 and more: too many).
+  uint32_t swept_boxes() const { return swept_count_; }
   // The frame state recorded before the last one (the last one itself after the first update).
   const scene::FrameState& previous_frame() const { return previous_; }
 
@@ -102,6 +105,9 @@ class GpuScene {
     glm::dvec3 origin{0.0};
   };
   void upload_geometry();
+  // World-space bounds of instance i in `frame`; the swept boxes of the changed ones, uploaded.
+  std::pair<glm::dvec3, glm::dvec3> world_bounds(const scene::FrameState& frame, size_t i) const;
+  void upload_swept_boxes(const scene::FrameState& frame, glm::dvec3 origin);
   void write_slot(VkCommandBuffer cmd, Slot& slot, const scene::FrameState& frame, glm::dvec3 origin,
                   std::span<const gpu::GpuInstance> records, std::span<const VkAccelerationStructureInstanceKHR> tlas_instances);
   const gpu::Context& ctx_;
@@ -110,6 +116,10 @@ class GpuScene {
   gpu::Buffer emitters_, alias_;
   std::vector<gpu::Blas> blas_;                 // per mesh
   std::vector<uint32_t> mesh_primitive_base_;   // per mesh: first GpuPrimitive
+  std::vector<std::pair<glm::vec3, glm::vec3>> mesh_bounds_;  // per mesh: object-space lower and upper corner
+  gpu::Buffer swept_;                           // GpuSweptBoxes (with history)
+  uint32_t swept_count_ = 0;
+  glm::dvec3 last_origin_{0.0};                 // render-space origin of the last recorded frame
   std::vector<Slot> slots_;                     // 1, or 2 with history
   int parity_ = 0;
   uint32_t frames_ = 0;                         // record_update calls so far

@@ -34,6 +34,7 @@
 #define BINDING_SPATIAL_LIST 27    // pixel indices
 #define BINDING_SPATIAL_ARGS 28    // VkDispatchIndirectCommand (workgroups) and the list's length
 #define BINDING_SPATIAL_PAIRS 29   // per pixel and pair slot: the paired neighbour's sample shifted into it (PairShift)
+#define BINDING_SWEPT_BOXES 30     // the changed instances' swept boxes (GpuSweptBoxes; with the previous frame)
 
 // Specialization constants of the passes (constant_id).
 #define SPEC_THIN_LENS 0

@@ -106,6 +106,27 @@ SurfaceHit load_hit(RayHit h) { return load_hit_with(b_instances[h.instance], h)
 #ifdef STRATA_HISTORY
 layout(set = 0, binding = BINDING_TLAS_PREV) uniform accelerationStructureEXT u_tlas_prev;
 layout(set = 0, binding = BINDING_INSTANCES_PREV, std430) readonly buffer InstancesPrev { GpuInstance b_instances_prev[]; };
+layout(set = 0, binding = BINDING_SWEPT_BOXES, std430) readonly buffer SweptBoxes { GpuSweptBoxes b_swept; };
+
+// Whether the ray from `origin` along `dir` (render space of the previous frame when `prev`) may
+// meet an instance that changed between the two frames: it enters one of their swept boxes
+// (GpuSweptBoxes), or they are too many to list. A ray that does not meets the same surfaces in
+// both frames. Slab test; a NaN from a zero direction component counts as meeting the box.
+bool ray_meets_change(bool prev, vec3 origin, vec3 dir) {
+  if (b_swept.count > SWEPT_BOXES_MAX) return true;
+  vec3 o = prev ? origin + b_swept.prev_to_current.xyz : origin;
+  vec3 inv = 1.0 / dir;
+  for (uint i = 0u; i < b_swept.count; ++i) {
+    vec3 t0 = (b_swept.lo[i].xyz - o) * inv;
+    vec3 t1 = (b_swept.hi[i].xyz - o) * inv;
+    vec3 near = min(t0, t1);
+    vec3 far = max(t0, t1);
+    float enter = max(max(near.x, near.y), max(near.z, 0.0));
+    float leave = min(min(far.x, far.y), far.z);
+    if (!(enter > leave)) return true;
+  }
+  return false;
+}
 
 GpuInstance instance_in(bool prev, uint i) {
   // (Not a ?: between the two blocks: glslang then stores one block's struct type into the other's.)

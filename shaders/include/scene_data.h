@@ -41,6 +41,21 @@ CONST_DEF uint INSTANCE_CHANGED_LOD = 4u;        // its LoD level (another mesh,
 CONST_DEF uint INSTANCE_CHANGED_EMISSION = 8u;   // it emits and moved or switched level: the light it casts changed
 CONST_DEF uint INSTANCE_CHANGED = 14u;           // any of the above
 
+// The swept boxes of change tracking (docs/ARCHITECTURE.md, "Suffix replay"): for every instance
+// that changed since the previous frame, a render-space box (of this frame) holding its geometry in
+// both frames, so that a ray missing every box meets the same unchanged surfaces in both. With more
+// changed instances than SWEPT_BOXES_MAX, `count` exceeds it and every ray counts as meeting one.
+CONST_DEF uint SWEPT_BOXES_MAX = 64u;
+struct GpuSweptBoxes {
+  vec4 prev_to_current;  // xyz: a point of the previous frame's render space plus this is in this one's
+  uint count;            // changed instances (> SWEPT_BOXES_MAX: too many to list)
+  uint pad0;
+  uint pad1;
+  uint pad2;
+  vec4 lo[SWEPT_BOXES_MAX];  // xyz: the box's lower corner
+  vec4 hi[SWEPT_BOXES_MAX];  // xyz: its upper corner
+};
+
 CONST_DEF uint MATERIAL_DOUBLE_SIDED = 1u;
 
 struct GpuMaterial {
@@ -78,5 +93,6 @@ static_assert(sizeof(strata::gpu::GpuInstance) == 144);
 static_assert(sizeof(strata::gpu::GpuMaterial) == 48);
 static_assert(sizeof(strata::gpu::GpuEmitter) == 80);
 static_assert(sizeof(strata::gpu::GpuAliasEntry) == 16);
+static_assert(sizeof(strata::gpu::GpuSweptBoxes) == 32 + 32 * strata::gpu::SWEPT_BOXES_MAX);
 #endif
 #endif

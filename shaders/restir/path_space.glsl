@@ -34,7 +34,9 @@
 // as u_restir.suffix_mode says: SUFFIX_REPLAY traces it again in the target frame (exact, both
 // directions: restir/suffix_replay.glsl, where its Jacobian is derived); SUFFIX_CACHED keeps the
 // stored radiance (biased: the suffix's light is that of the other frame); SUFFIX_FAIL fails the
-// shift (SHIFT_FAIL_STALE). The direction leaving x_k is kept in x_k's surface frame in every mode.
+// shift (SHIFT_FAIL_STALE); SUFFIX_AUTO replays, except a suffix of one segment that no change can
+// reach, whose stored radiance is then what the replay would find (suffix_unchanged). The direction
+// leaving x_k is kept in x_k's surface frame in every mode.
 #ifndef STRATA_PATH_SPACE_GLSL
 #define STRATA_PATH_SPACE_GLSL
 
@@ -203,7 +205,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
   bool has_suffix = k != 0u && k < n;
   if (suffix_changed && has_suffix && u_restir.suffix_mode == SUFFIX_FAIL) return shift_fail(r, SHIFT_FAIL_STALE);
 #ifdef STRATA_HISTORY
-  bool replay = suffix_changed && has_suffix && u_restir.suffix_mode == SUFFIX_REPLAY;
+  bool replay = suffix_changed && has_suffix && (u_restir.suffix_mode == SUFFIX_REPLAY || u_restir.suffix_mode == SUFFIX_AUTO);
 #else
   bool replay = false;  // one frame: nothing to replay
 #endif
@@ -309,6 +311,9 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
       dk = surface_to_world(xk, y.xk_direction);
       fk = scatter(xk, dk);
       if (!(luminance(fk) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
+#ifdef STRATA_HISTORY
+      if (replay && u_restir.suffix_mode == SUFFIX_AUTO && suffix_unchanged(prev, y, xk, dk)) replay = false;
+#endif
       if (!replay) {
         float m = 1.0;
         if (k + 1u == n) m = technique_weight(nee, y.light_pdf_end, scatter_pdf(xk, dk));

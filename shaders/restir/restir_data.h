@@ -13,6 +13,7 @@ CONST_DEF uint SHIFT_HYBRID = 1u;        // random replay until the first reconn
 CONST_DEF uint SUFFIX_FAIL = 0u;    // the shift fails (SHIFT_FAIL_STALE)
 CONST_DEF uint SUFFIX_CACHED = 1u;  // the stored radiance is kept (the references' behaviour; biased)
 CONST_DEF uint SUFFIX_REPLAY = 2u;  // the suffix is traced again in the target frame (unbiased)
+CONST_DEF uint SUFFIX_AUTO = 3u;    // replay, except a one-segment suffix that no change can reach (kept: exact)
 
 CONST_DEF uint MIS_BALANCE = 0u;   // generalized balance heuristic (RS-main Eq. 6), O(N^2) shifts
 CONST_DEF uint MIS_PAIRWISE = 1u;  // confidence-weighted pairwise MIS, O(N) shifts

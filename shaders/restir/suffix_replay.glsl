@@ -88,6 +88,22 @@ bool sample_light_in(bool prev, vec3 x, vec3 u, out LightSample ls) {
   return ls.pdf > 0.0 && !isinf(ls.pdf);
 }
 
+// suffix auto: whether y's suffix after x_k is the same in the target frame as in y's own, so that
+// its stored radiance and end density are exactly what replay_suffix would compute there. Decided
+// without tracing for a suffix of one segment (k + 1 = n: from x_k along omega'_k to the end, an
+// emitter or the environment): x_k's instance did not change (so x_k and omega'_k are the same
+// world point and direction in both frames), the light totals that the end's density depends on
+// are equal, and the ray misses the swept box of every instance that changed (ray_meets_change),
+// so that it meets the same unchanged surfaces in both frames (x_k on a changed instance lies inside
+// that instance's box, so the first test only saves the loop). Longer suffixes are replayed: their
+// later vertices are not known without tracing them.
+bool suffix_unchanged(bool prev, PathSample y, Vertex xk, vec3 dk) {
+  if (y.k + 1u != y.segments || instance_changes(y.xk.instance) != 0u) return false;
+  if (u_frame.total_emitter_power != u_frame.prev_total_emitter_power || u_frame.env_select_prob != u_frame.prev_env_select_prob)
+    return false;
+  return !ray_meets_change(prev, xk.position, dk);
+}
+
 // Traces y's suffix from x_k (`xk`, loaded in the target frame and entered from the offset path's
 // y_{k-1}) along omega'_k = `dk` (world space) in the current (prev = false) or previous frame.
 SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {

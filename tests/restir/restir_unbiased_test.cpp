@@ -329,6 +329,17 @@ std::vector<Case> cases() {
                    o.suffix = "replay";
                  }, .scored = [](uint32_t f) { return f % 2 == 1; }, .state = state});
   }
+  // suffix auto keeps a one-segment suffix whose ray misses the swept boxes of the changed
+  // instances: where the jumping box meets a suffix (it shadows most of the room every other
+  // frame) that suffix must be traced again, and the others give the replay's value unchanged
+  // (tests/restir/suffix_reuse_test.cpp compares the two modes' images directly).
+  for (const auto& [name, state] : std::vector<std::pair<std::string, decltype(Case::state)>>{
+           {"moving_occluder", moving_occluder}, {"suffix_only_motion", suffix_only_motion}}) {
+    v.push_back({.name = "auto_" + name, .scene = "cornell", .frames = 6, .runs = 64, .options = [](render::RestirOptions& o) {
+                   o.spatial = false;
+                   o.suffix = "auto";
+                 }, .scored = [](uint32_t f) { return f % 2 == 1; }, .state = state});
+  }
   v.push_back({.name = "replay_glossy_moving_occluder", .scene = "cornell", .frames = 6, .runs = 64,
                .options = [](render::RestirOptions& o) {
                  o.spatial = false;

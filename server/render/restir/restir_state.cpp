@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "include/bindings.h"
+#include "include/scene_data.h"
 #include "restir/primary_data.h"
 #include "restir/reservoir.h"
 #include "restir/restir_data.h"
@@ -30,8 +31,10 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
   c.direct_strata = primary_stage ? o.direct_strata : 1u;
   // The albedo control variate needs the domain's primary vertex (gather) and the neighbours' entries.
   c.albedo_strata = primary_stage && spec.fixed_primary && o.albedo_strata > 1 ? o.albedo_strata : 0u;
-  // auto replays: whether a path's suffix met a changed instance is not known without tracing it.
-  c.suffix_mode = o.suffix == "fail" ? gpu::SUFFIX_FAIL : o.suffix == "cached" ? gpu::SUFFIX_CACHED : gpu::SUFFIX_REPLAY;
+  c.suffix_mode = o.suffix == "fail"     ? gpu::SUFFIX_FAIL
+                  : o.suffix == "cached" ? gpu::SUFFIX_CACHED
+                  : o.suffix == "replay" ? gpu::SUFFIX_REPLAY
+                                         : gpu::SUFFIX_AUTO;
   // ReSTIR DI: camera, x1, light (one bounce).
   c.max_segments = spec.direct_lighting || o.direct_lighting ? std::min<uint32_t>(2, s.max_depth) : s.max_depth;
   return c;
@@ -39,13 +42,17 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
 
 }  // namespace
 
-std::string suffix_decision(const std::string& suffix_option, bool scene_moved) {
+std::string suffix_decision(const std::string& suffix_option, bool scene_moved, uint32_t changed_instances) {
   if (!scene_moved) return "suffixes kept (nothing moved)";
   if (suffix_option == "fail") return "suffixes refused (suffix fail: the scene changed)";
   if (suffix_option == "cached") return "suffixes cached (suffix cached: stored radiance, biased)";
   if (suffix_option == "replay") return "suffixes replayed (the scene changed)";
-  return "suffixes replayed (suffix auto: the scene changed, and whether a path met a changed instance is not known "
-         "without tracing it)";
+  const std::string changed = std::to_string(changed_instances) + " changed instance" + (changed_instances == 1 ? "" : "s");
+  if (changed_instances > gpu::SWEPT_BOXES_MAX)
+    return "suffixes replayed (suffix auto: " + changed + ", more than the " + std::to_string(gpu::SWEPT_BOXES_MAX) +
+           " swept boxes the per-path test lists)";
+  return "suffixes of one segment whose ray misses the swept boxes of the " + changed +
+         " kept (suffix auto: the same light in both frames), the others replayed";
 }
 
 RestirState::RestirState(const SharedResources& shared_resources, const RenderSettings& render_settings, const MethodSpec& method)

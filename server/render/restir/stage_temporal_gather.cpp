@@ -22,6 +22,7 @@ class TemporalGatherStage : public Stage {
   void record(const StageFrame& f) override {
     ran_ = f.frame.history_valid;
     moved_ = f.frame.scene_moved;
+    changed_ = state_.shared.scene.swept_boxes();
     if (!ran_) return;
     timed(f, "temporal", [&] { pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height); });
   }
@@ -30,7 +31,7 @@ class TemporalGatherStage : public Stage {
     if (!ran_) return {"temporal", false, "no previous frame yet"};
     return {"temporal", true,
             "gather, " + o.shift + " shift, " + (o.unbiased ? "reverse-shift MIS" : "confidence weights (biased)") + "; " +
-                suffix_decision(o.suffix, moved_)};
+                suffix_decision(o.suffix, moved_, changed_)};
   }
 
  private:
@@ -38,6 +39,7 @@ class TemporalGatherStage : public Stage {
   Pass pass_;
   bool ran_ = false;
   bool moved_ = false;
+  uint32_t changed_ = 0;  // instances in the swept boxes of this frame
 };
 
 }  // namespace

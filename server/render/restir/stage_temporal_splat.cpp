@@ -59,6 +59,7 @@ class TemporalSplatStage : public Stage {
   void record(const StageFrame& f) override {
     ran_ = f.frame.history_valid;
     moved_ = f.frame.scene_moved;
+    changed_ = state_.shared.scene.swept_boxes();
     if (!ran_) return;
     // K of this frame (RS-main Eq. 19), as the passes read it from the frame constants.
     partitions_ = time_partitions(f.frame.frame, state_.settings.restir.splats_per_frame);
@@ -83,7 +84,7 @@ class TemporalSplatStage : public Stage {
             std::string(state_.spec.backup ? "splat with backup sample" : "splat") + " (counting sort; reprojection + " +
                 state_.settings.restir.shift + " shift, reverse-splat MIS, bilinear confidence" +
                 (partitions_ > 1 ? "; " + std::to_string(partitions_) + " time partitions over the shutter)" : ")") + "; " +
-                suffix_decision(state_.settings.restir.suffix, moved_)};
+                suffix_decision(state_.settings.restir.suffix, moved_, changed_)};
   }
 
   std::map<std::string, uint64_t> memory_bytes() const override {
@@ -127,6 +128,7 @@ class TemporalSplatStage : public Stage {
   uint32_t partitions_ = 1;
   bool ran_ = false;
   bool moved_ = false;
+  uint32_t changed_ = 0;  // instances in the swept boxes of this frame
 };
 
 }  // namespace
