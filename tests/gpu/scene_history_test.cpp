@@ -167,8 +167,10 @@ TEST_F(SceneHistory, WithoutHistoryThereIsOneSlotAndNoExtraMemory) {
   EXPECT_EQ(a.geometry, b.geometry);
   EXPECT_EQ(a.acceleration, b.acceleration);
   EXPECT_EQ(a.per_frame, b.per_frame);
-  // The history costs exactly one more TLAS with its scratch and one more instance buffer.
-  EXPECT_EQ(b.history, plain.tlas().bytes() + plain.tlas().scratch_bytes() + plain.instances().size());
+  // The history costs exactly one more TLAS with its scratch, one more instance buffer and the
+  // changed instances' swept boxes (suffix auto).
+  EXPECT_EQ(b.history,
+            plain.tlas().bytes() + plain.tlas().scratch_bytes() + plain.instances().size() + sizeof(gpu::GpuSweptBoxes));
   for (int k = 0; k < 3; ++k) {
     scene::FrameState f = state(s, k % 2);
     gpu_context().submit_and_wait([&](VkCommandBuffer cmd) { plain.record_update(cmd, f); });
