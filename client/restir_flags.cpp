@@ -12,7 +12,7 @@ void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
   cmd->add_option("--suffix", r.suffix,
                   "ReSTIR path suffixes when the scene changed: auto | replay | cached (biased) | fail (default: the server's, auto)")
       ->check(CLI::IsMember({"auto", "replay", "cached", "fail"}));
-  cmd->add_option("--confidence-cap", r.confidence_cap, "ReSTIR confidence cap of the temporal history where something moved (1..1000; default the method's: 4 gather, 2 splat)");
+  cmd->add_option("--confidence-cap", r.confidence_cap, "ReSTIR confidence cap of the temporal history where something moved (1..1000; default the method's: 2; restir-di 4)");
   cmd->add_option("--still-confidence-cap", r.still_confidence_cap,
                   "ReSTIR: confidence cap where nothing moved, the camera and the instance a pixel sees (1..1000; 0: --confidence-cap; default 8)");
   cmd->add_option("--spatial-neighbors", r.spatial_neighbors, "ReSTIR spatial neighbours per pixel (0..8; default 2)");

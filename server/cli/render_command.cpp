@@ -95,7 +95,7 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_option("--suffix", r.suffix, "ReSTIR path suffixes when the scene changed: auto | replay | cached (biased) | fail")
       ->capture_default_str();
   cmd->add_option("--confidence-cap", r.confidence_cap,
-                  "ReSTIR confidence cap of the temporal history where something moved (0: the method's, 4 gather, 2 splat)")
+                  "ReSTIR confidence cap of the temporal history where something moved (0: the method's, 2; restir-di 4)")
       ->capture_default_str();
   cmd->add_option("--still-confidence-cap", r.still_confidence_cap,
                   "ReSTIR: confidence cap where nothing moved, the camera and the instance a pixel sees (0: --confidence-cap)")

@@ -29,7 +29,7 @@ const std::vector<MethodSpec>& method_table() {
       {"pt", "reference path tracer: next-event estimation and MIS, no reuse", false, false, false, false, false, S::path_trace,
        false, 4.0f},
       {"restir-gather", "ReSTIR PT (GRIS): gather temporal reuse by backprojection, spatial reuse", true, false, false, false, false,
-       S::temporal_gather, true, 4.0f},
+       S::temporal_gather, true, 2.0f},
       {"restir-di", "ReSTIR DI: resampled direct lighting over one-bounce paths (camera, first hit, light)", true, true, false,
        false, false, S::temporal_gather, true, 4.0f},
       {"restir-splat", "reservoir splatting: previous reservoirs forward-projected with their primary hits (RS-main 4.1)", true,

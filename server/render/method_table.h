@@ -36,9 +36,8 @@ struct MethodSpec {
   // their primary vertex"). Not for splatting, whose samples carry their primary hits.
   bool fixed_primary;
   // The default cap of the temporal history's confidence where something moved (RestirOptions::
-  // confidence_cap = 0). Chosen by measurement (docs/BENCHMARKS.md, "Reservoir splatting under camera
-  // motion: the landing count"): 4 for gathering; 2 for splatting, whose history under motion carries
-  // the noise of how many splats land in a pixel, which a higher cap compounds.
+  // confidence_cap = 0). Chosen by measurement (docs/ARCHITECTURE.md, "Confidence cap"): 2 for
+  // restir-gather and the splat methods, 4 for restir-di (2 and 4 tie there).
   float confidence_cap;
   std::vector<StageKind> stages() const;  // all stages, in frame order, before options switch any off
 };
