@@ -70,6 +70,15 @@ struct RestirOptions {
   // Whether the primary stage runs and fills the visibility buffer: the method's domains start at
   // its hits (MethodSpec::fixed_primary), or a temporal or spatial stage reads it.
   bool visibility_buffer(bool fixed_primary) const { return fixed_primary || temporal || spatial; }
+  // The strata the method's passes use (GpuRestirConstants; the session's decisions say the same):
+  // both edge tests read the neighbours' visibility-buffer entries, and the albedo control variate
+  // needs the domain's primary vertex as well (gather). direct_strata 1 and albedo_strata 0: off.
+  uint32_t direct_strata_used(const MethodSpec& method) const {
+    return visibility_buffer(method.fixed_primary) ? direct_strata : 1u;
+  }
+  uint32_t albedo_strata_used(const MethodSpec& method) const {
+    return method.fixed_primary && albedo_strata > 1 ? albedo_strata : 0u;
+  }
   // The radius the spatial pass uses for an image `height` pixels high.
   float spatial_radius_pixels(uint32_t height) const { return spatial_radius > 0.0f ? spatial_radius : default_spatial_radius(height); }
 

@@ -131,9 +131,10 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                            : "neighbours for pixels whose reservoir holds no history (disoccluded, or the first frame), "
                              "instead of spatial_neighbors"));
   }
-  const bool visibility_buffer = restir_options(eff).visibility_buffer(method.fixed_primary);
+  const render::RestirOptions options = restir_options(eff);
+  const bool visibility_buffer = options.visibility_buffer(method.fixed_primary);
   out.push_back(make("direct_strata", asked(req.has_direct_strata(), u(req.direct_strata())), u(eff.direct_strata()),
-                     method.reuse && eff.direct_strata() > 1 && visibility_buffer,
+                     method.reuse && options.direct_strata_used(method) > 1,
                      !method.reuse ? no_reuse + "; pt averages its spp camera samples"
                      : eff.direct_strata() == 1
                          ? "what the camera sees directly comes from each pixel's own camera sample"
@@ -141,14 +142,12 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                          ? "no visibility buffer to find the edges of directly seen emission (temporal and spatial reuse are off)"
                          : "pixels next to both emitting and non-emitting neighbours estimate what they see directly with " +
                                u(eff.direct_strata() * eff.direct_strata()) + " stratified camera samples"));
-  const bool albedo_cv = method.reuse && method.fixed_primary && eff.albedo_strata() > 1 && visibility_buffer;
-  out.push_back(make("albedo_strata", asked(req.has_albedo_strata(), u(req.albedo_strata())), u(eff.albedo_strata()), albedo_cv,
+  out.push_back(make("albedo_strata", asked(req.has_albedo_strata(), u(req.albedo_strata())), u(eff.albedo_strata()),
+                     method.reuse && options.albedo_strata_used(method) > 0,
                      !method.reuse ? no_reuse
                      : !method.fixed_primary
                          ? "the splat methods keep the camera sample in the sample; the control variate needs the domain's"
                      : eff.albedo_strata() == 1 ? "off: the reflected light comes from each pixel's own camera sample"
-                     : !visibility_buffer
-                         ? "no visibility buffer to find albedo edges (temporal and spatial reuse are off)"
                          : "pixels whose neighbours see one surface in more than one material add the albedo control variate, "
                            "the pixel's earlier demodulated radiance times the difference between the mean albedo of " +
                                u(eff.albedo_strata() * eff.albedo_strata()) +

@@ -11,7 +11,7 @@
 namespace strata::render {
 namespace {
 
-gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec& spec, bool primary_stage) {
+gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec& spec) {
   const RestirOptions& o = s.restir;
   gpu::GpuRestirConstants c{};
   c.initial_candidates = o.initial_candidates;
@@ -27,10 +27,8 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
   c.flags = (o.unbiased ? gpu::RESTIR_UNBIASED : 0u) | (spec.backup ? gpu::RESTIR_SPLAT_BACKUP : 0u) |
             (o.temporal_filter ? gpu::RESTIR_TEMPORAL_FILTER : 0u);
   c.splats_per_frame = o.splats_per_frame;
-  // The edge test reads the neighbours' visibility-buffer entries: without a primary stage there are none.
-  c.direct_strata = primary_stage ? o.direct_strata : 1u;
-  // The albedo control variate needs the domain's primary vertex (gather) and the neighbours' entries.
-  c.albedo_strata = primary_stage && spec.fixed_primary && o.albedo_strata > 1 ? o.albedo_strata : 0u;
+  c.direct_strata = o.direct_strata_used(spec);
+  c.albedo_strata = o.albedo_strata_used(spec);
   c.suffix_mode = o.suffix == "fail"     ? gpu::SUFFIX_FAIL
                   : o.suffix == "cached" ? gpu::SUFFIX_CACHED
                   : o.suffix == "replay" ? gpu::SUFFIX_REPLAY
@@ -65,7 +63,7 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
       primary_stage(render_settings.restir.visibility_buffer(method.fixed_primary)) {
   const auto& ctx = shared.ctx;
   constants = gpu::Buffer(ctx, sizeof(gpu::GpuRestirConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "restir constants");
-  gpu::GpuRestirConstants c = make_constants(settings, spec, primary_stage);
+  gpu::GpuRestirConstants c = make_constants(settings, spec);
   constants.upload(&c, sizeof c);
   work = device_storage(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (work)");
   history = PingPong(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (history)");
