@@ -132,7 +132,6 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
   }
   moved_ = std::any_of(changes_.begin(), changes_.end(), [](uint32_t c) { return c != 0; });
   if (keeps_history()) upload_swept_boxes(frame, origin);
-  last_origin_ = origin;
   if (frames_ > 0) previous_ = std::move(current_);
   else previous_ = frame;
   current_ = frame;
@@ -181,7 +180,8 @@ std::pair<glm::dvec3, glm::dvec3> GpuScene::world_bounds(const scene::FrameState
 // Called after changes_ holds this frame's changes and before current_ becomes the previous frame.
 void GpuScene::upload_swept_boxes(const scene::FrameState& frame, glm::dvec3 origin) {
   gpu::GpuSweptBoxes boxes{};
-  boxes.prev_to_current = glm::vec4(glm::vec3(frames_ > 0 ? last_origin_ - origin : glm::dvec3(0.0)), 0.0f);
+  // The other slot holds the previous frame (the first frame seeds it with its own origin: zero).
+  boxes.prev_to_current = glm::vec4(glm::vec3(slots_[size_t(1 - parity_)].origin - origin), 0.0f);
   uint32_t n = 0;
   for (size_t i = 0; i < changes_.size(); ++i) {
     if (changes_[i] == 0) continue;
@@ -198,7 +198,6 @@ void GpuScene::upload_swept_boxes(const scene::FrameState& frame, glm::dvec3 ori
     ++n;
   }
   boxes.count = n;
-  swept_count_ = n;
   swept_.upload(&boxes, sizeof boxes);
 }
 

@@ -59,12 +59,11 @@ class GpuScene {
   // Per instance, what changed between the frame before and the last recorded one
   // (INSTANCE_CHANGED_*; the same bits are in the device's instance records of that frame).
   const std::vector<uint32_t>& instance_changes() const { return changes_; }
+  // How many instances changed. With history, their swept boxes (GpuSweptBoxes) are bound as BINDING_SWEPT_BOXES; more than
+  // SWEPT_BOXES_MAX changed instances are too many to list (every ray then counts as meeting one).
   uint32_t changed_instances() const {
     return uint32_t(std::count_if(changes_.begin(), changes_.end(), [](uint32_t c) { return c != 0; }));
   }
-  // With history: the swept boxes of the instances that changed (GpuSweptBoxes), bound as
-  // BINDING_SWEPT_BOXES; swept_boxes() is how many were listed (SWEPT_BOXES_MAX + 1 and more: too many).
-  uint32_t swept_boxes() const { return swept_count_; }
   // The frame state recorded before the last one (the last one itself after the first update).
   const scene::FrameState& previous_frame() const { return previous_; }
 
@@ -118,8 +117,6 @@ class GpuScene {
   std::vector<uint32_t> mesh_primitive_base_;   // per mesh: first GpuPrimitive
   std::vector<std::pair<glm::vec3, glm::vec3>> mesh_bounds_;  // per mesh: object-space lower and upper corner
   gpu::Buffer swept_;                           // GpuSweptBoxes (with history)
-  uint32_t swept_count_ = 0;
-  glm::dvec3 last_origin_{0.0};                 // render-space origin of the last recorded frame
   std::vector<Slot> slots_;                     // 1, or 2 with history
   int parity_ = 0;
   uint32_t frames_ = 0;                         // record_update calls so far

@@ -92,18 +92,17 @@ bool sample_light_in(bool prev, vec3 x, vec3 u, out LightSample ls) {
 // its stored radiance and end density are exactly what replay_suffix would compute there. Decided
 // without tracing for a suffix of one segment (k + 1 = n: from x_k along omega'_k to the end, an
 // emitter or the environment): x_k's instance did not change (so x_k and omega'_k are the same
-// world point and direction in both frames), the light totals that the end's density depends on
-// are equal (to 1e-5: with the camera, render-space emitter areas change in their last bits, as
-// GpuScene's light-selection test allows), and the ray misses the swept box of every instance that changed (ray_meets_change),
+// world point and direction in both frames), the emitter power total that the end's density
+// depends on is equal (to 1e-5: with the camera, render-space emitter areas change in their last
+// bits, as GpuScene's light-selection test allows; the environment's share is a session constant),
+// and the ray misses the swept box of every instance that changed (ray_meets_change),
 // so that it meets the same unchanged surfaces in both frames (x_k on a changed instance lies inside
 // that instance's box, so the first test only saves the loop). Longer suffixes are replayed: their
 // later vertices are not known without tracing them.
 bool suffix_unchanged(bool prev, PathSample y, Vertex xk, vec3 dk) {
   if (y.k + 1u != y.segments || instance_changes(y.xk.instance) != 0u) return false;
   float power = max(u_frame.total_emitter_power, u_frame.prev_total_emitter_power);
-  if (abs(u_frame.total_emitter_power - u_frame.prev_total_emitter_power) > 1e-5 * power ||
-      u_frame.env_select_prob != u_frame.prev_env_select_prob)
-    return false;
+  if (abs(u_frame.total_emitter_power - u_frame.prev_total_emitter_power) > 1e-5 * power) return false;
   return !ray_meets_change(prev, xk.position, dk);
 }
 

@@ -22,7 +22,7 @@ class TemporalGatherStage : public Stage {
   void record(const StageFrame& f) override {
     ran_ = f.frame.history_valid;
     moved_ = f.frame.scene_moved;
-    changed_ = state_.shared.scene.swept_boxes();
+    changed_ = state_.shared.scene.changed_instances();
     if (!ran_) return;
     timed(f, "temporal", [&] { pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height); });
   }
@@ -39,7 +39,7 @@ class TemporalGatherStage : public Stage {
   Pass pass_;
   bool ran_ = false;
   bool moved_ = false;
-  uint32_t changed_ = 0;  // instances in the swept boxes of this frame
+  uint32_t changed_ = 0;  // instances that changed since the previous frame
 };
 
 }  // namespace

@@ -59,7 +59,7 @@ class TemporalSplatStage : public Stage {
   void record(const StageFrame& f) override {
     ran_ = f.frame.history_valid;
     moved_ = f.frame.scene_moved;
-    changed_ = state_.shared.scene.swept_boxes();
+    changed_ = state_.shared.scene.changed_instances();
     if (!ran_) return;
     // K of this frame (RS-main Eq. 19), as the passes read it from the frame constants.
     partitions_ = time_partitions(f.frame.frame, state_.settings.restir.splats_per_frame);
@@ -128,7 +128,7 @@ class TemporalSplatStage : public Stage {
   uint32_t partitions_ = 1;
   bool ran_ = false;
   bool moved_ = false;
-  uint32_t changed_ = 0;  // instances in the swept boxes of this frame
+  uint32_t changed_ = 0;  // instances that changed since the previous frame
 };
 
 }  // namespace

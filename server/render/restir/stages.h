@@ -23,7 +23,6 @@ std::unique_ptr<Stage> make_spatial_stage(const RestirState& state);
 // shade: the last resampling's estimate and the directly seen emission into the image (restir_shade); contribution -> accum.
 std::unique_ptr<Stage> make_shade_stage(const RestirState& state);
 
-// What a temporal stage did with path suffixes this frame (restir/suffix_replay.glsl), for its decision.
 // What the temporal stage did with path suffixes this frame (option `suffix`; `changed_instances`:
 // the swept boxes of GpuScene, which suffix auto tests a one-segment suffix against).
 std::string suffix_decision(const std::string& suffix_option, bool scene_moved, uint32_t changed_instances);
