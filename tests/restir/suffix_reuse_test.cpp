@@ -94,12 +94,7 @@ TEST_P(SuffixReuse, ALodSwitchElsewhereRefusesOnlyPathsThatReconnectOnIt) {
 // crosses it (the swept-box test broken) would show the unshaded light in its pixel.
 TEST_P(SuffixReuse, AutoKeepsOnlyWhatAReplayWouldFind) {
   const scene::Scene s = scene::builtin_scene("cornell");
-  const uint32_t box = instance_named(s, "short_box");
-  auto state = [&](uint32_t f) {
-    scene::FrameState st = s.frame_state(0);
-    if (f == 1) st.transforms[box] = glm::scale(glm::translate(glm::mat4(1.0f), {0.0f, 1.8f, 0.0f}), {2.0f, 0.1f, 2.0f});
-    return st;
-  };
+  auto state = [&](uint32_t f) { return f == 1 ? test::cornell_light_shaded(s) : s.frame_state(0); };
   auto render = [&](const std::string& suffix, uint64_t& kept) {
     render::RenderSettings rs;
     rs.width = 32;

@@ -1,3 +1,4 @@
+#include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
 
 #include "support/test_scenes.h"
@@ -59,6 +60,13 @@ uint32_t instance_named(const scene::Scene& s, const std::string& name) {
   for (uint32_t i = 0; i < s.instances.size(); ++i)
     if (s.instances[i].name == name) return i;
   throw std::runtime_error("no instance " + name);
+}
+
+scene::FrameState cornell_light_shaded(const scene::Scene& cornell) {
+  scene::FrameState st = cornell.frame_state(0);
+  st.transforms[instance_named(cornell, "short_box")] =
+      glm::scale(glm::translate(glm::mat4(1.0f), {0.0f, 1.8f, 0.0f}), {2.0f, 0.1f, 2.0f});
+  return st;
 }
 
 std::string method_test_name(const std::string& method) {

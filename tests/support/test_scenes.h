@@ -14,6 +14,11 @@ scene::Scene furnace_box(float albedo, float emission, float half_size = 1.0f);
 // The index of the instance called `name` (throws std::runtime_error when there is none).
 uint32_t instance_named(const scene::Scene& s, const std::string& name);
 
+// cornell's frame state with its short box flattened into a slab 20 cm under the ceiling light
+// (a 2 cm gap to the ceiling): the last segment of nearly every path to the light is blocked,
+// while what the camera sees and the first bounces stay in place (suffix auto's tests).
+scene::FrameState cornell_light_shaded(const scene::Scene& cornell);
+
 // A method name as a gtest parameter name ("restir-gather" -> "restir_gather").
 std::string method_test_name(const std::string& method);
 
