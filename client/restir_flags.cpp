@@ -14,7 +14,7 @@ void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
       ->check(CLI::IsMember({"auto", "replay", "cached", "fail"}));
   cmd->add_option("--confidence-cap", r.confidence_cap, "ReSTIR confidence cap of the temporal history where something moved (1..1000; default the method's: 2; restir-di 4)");
   cmd->add_option("--still-confidence-cap", r.still_confidence_cap,
-                  "ReSTIR: confidence cap where nothing moved, the camera and the instance a pixel sees (1..1000; 0: --confidence-cap; default 8)");
+                  "ReSTIR: confidence cap where nothing moved, the camera and every instance (1..1000; 0: --confidence-cap; default 8)");
   cmd->add_option("--spatial-neighbors", r.spatial_neighbors, "ReSTIR spatial neighbours per pixel (0..8; default 2)");
   cmd->add_option("--spatial-radius", r.spatial_radius, "ReSTIR spatial radius in pixels (1..256; default 2.5% of the image height, at least 4)");
   cmd->add_option("--initial-candidates", r.initial_candidates, "ReSTIR candidate paths per pixel (1..64; default 1)");

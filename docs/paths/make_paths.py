@@ -67,3 +67,8 @@ def carousel_camera(i):
     return camera(eye, look_at(eye, target), 0.8, norm(sub(target, eye)))
 write("carousel_objects_only.json", [{"animation_frame": i, "camera": carousel_camera(0)} for i in range(8)])
 write("carousel_camera_only.json", [{"animation_frame": 0, "camera": carousel_camera(i)} for i in range(8)])
+
+# The same two motions over 16 frames, for the confidence cap's history length (docs/BENCHMARKS.md,
+# "Why a longer history costs error under motion").
+write("carousel_objects_only_16.json", [{"animation_frame": i, "camera": carousel_camera(0)} for i in range(16)])
+write("carousel_camera_only_16.json", [{"animation_frame": 0, "camera": carousel_camera(i)} for i in range(16)])

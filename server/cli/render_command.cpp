@@ -98,7 +98,7 @@ Runner add_render_command(CLI::App& app) {
                   "ReSTIR confidence cap of the temporal history where something moved (0: the method's, 2; restir-di 4)")
       ->capture_default_str();
   cmd->add_option("--still-confidence-cap", r.still_confidence_cap,
-                  "ReSTIR: confidence cap where nothing moved, the camera and the instance a pixel sees (0: --confidence-cap)")
+                  "ReSTIR: confidence cap where nothing moved, the camera and every instance (0: --confidence-cap)")
       ->capture_default_str();
   cmd->add_option("--spatial-neighbors", r.spatial_neighbors, "ReSTIR spatial neighbours (0..8)")->capture_default_str();
   cmd->add_option("--spatial-radius", r.spatial_radius, "ReSTIR spatial radius in pixels (0: 2.5% of the height, at least 4 px)")->capture_default_str();

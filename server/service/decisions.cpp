@@ -99,7 +99,7 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                        !method.reuse ? no_reuse
                        : !temporal   ? no_temporal
                                      : "confidence is clamped to " + format_float(still) +
-                                         " where nothing moved since the previous frame (the camera, and the instance the pixel sees), "
+                                         " where nothing moved since the previous frame (the camera and every instance), "
                                          "to confidence_cap elsewhere"));
   }
   out.push_back(make("spatial_neighbors", asked(req.has_spatial_neighbors(), u(req.spatial_neighbors())),

@@ -57,13 +57,14 @@ Reservoir reservoir_empty() {
 }
 
 // The confidence cap of the domain whose primary vertex is visibility-buffer entry `e` of this frame
-// (RS-main 3.4; docs/ARCHITECTURE.md, "Confidence cap"): still_confidence_cap where nothing the
-// domain's history depends on moved since the previous frame (the camera, and the instance its
-// primary vertex lies on), else confidence_cap. It reads geometry only, so like any confidence
-// weights it leaves the MIS weights unbiased. For the splat methods `e` is the pixel-centre hit.
+// (RS-main 3.4; docs/ARCHITECTURE.md, "Confidence cap"): still_confidence_cap where nothing moved
+// since the previous frame (the camera, and no instance anywhere: an object that moves changes the
+// light arriving at still surfaces too, through its shadows and reflections), else confidence_cap.
+// It reads the frame's flags and geometry only, so like any confidence weights it leaves the MIS
+// weights unbiased. For the splat methods `e` is the pixel-centre hit.
 float confidence_cap_of(GpuPrimaryHit e) {
-  bool still = (u_frame.history_flags & HISTORY_CAMERA_STILL) != 0u && (e.flags & PRIMARY_HIT) != 0u &&
-               instance_changes(e.instance) == 0u;
+  bool still = (u_frame.history_flags & HISTORY_CAMERA_STILL) != 0u && (u_frame.history_flags & HISTORY_SCENE_MOVED) == 0u &&
+               (e.flags & PRIMARY_HIT) != 0u;
   return still ? u_restir.still_confidence_cap : u_restir.confidence_cap;
 }
 
