@@ -272,6 +272,10 @@ std::vector<Case> cases() {
                }});
   v.push_back({.name = "static_hybrid_pairwise", .scene = "cornell"});
   v.push_back({.name = "moving_camera", .scene = "cornell", .state = moving_camera});
+  // Gather under forward motion (the splat methods have their case below): the camera dollies
+  // 25 cm per frame, so the image magnifies and pixels at the edges lose their history.
+  v.push_back({.name = "gather_forward_motion", .scene = "cornell", .options = [](render::RestirOptions& o) { o.spatial = false; },
+               .state = forward_camera});
   v.push_back({.name = "reconnection_shift", .scene = "cornell", .options = [](render::RestirOptions& o) { o.shift = "reconnection"; }});
   v.push_back({.name = "balance_mis_3_neighbours", .scene = "cornell", .options = [](render::RestirOptions& o) {
                  o.mis = "balance";
