@@ -130,7 +130,6 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
     write_slot(cmd, slots_[size_t(1 - parity_)], frame, origin, records, tlas_instances);
     ++seed_builds_;
   }
-  moved_ = std::any_of(changes_.begin(), changes_.end(), [](uint32_t c) { return c != 0; });
   if (keeps_history()) upload_swept_boxes(frame, origin);
   if (frames_ > 0) previous_ = std::move(current_);
   else previous_ = frame;

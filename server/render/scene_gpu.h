@@ -55,7 +55,7 @@ class GpuScene {
   // a copy of that frame then).
   bool history_valid() const { return keeps_history() && frames_ >= 2; }
   // Some transform or LoD level of the last recorded frame differs from the frame before it.
-  bool moved_since_previous() const { return moved_; }
+  bool moved_since_previous() const { return changed_instances() != 0; }
   // Per instance, what changed between the frame before and the last recorded one
   // (INSTANCE_CHANGED_*; the same bits are in the device's instance records of that frame).
   const std::vector<uint32_t>& instance_changes() const { return changes_; }
@@ -122,7 +122,6 @@ class GpuScene {
   uint32_t frames_ = 0;                         // record_update calls so far
   uint32_t seed_builds_ = 0;                    // TLAS builds that seeded the previous slot
   scene::FrameState current_, previous_;
-  bool moved_ = false;
   std::vector<uint32_t> changes_;               // per instance, INSTANCE_CHANGED_* of the last frame
   std::vector<bool> instance_emits_;            // per instance: some level has emissive triangles
   bool has_emitters_ = false;
