@@ -264,6 +264,22 @@ scene::FrameState suffix_only_motion(const scene::Scene& s, uint32_t f) {
   return st;
 }
 
+// The room's back-left corner seen from 1.5 m through a wide lens focused 40 cm away, temporal
+// reuse only: a pixel's primary vertices of two frames (two lens samples) lie up to a metre apart
+// on the walls beside the corner, about as far as their reconnection vertices on the other wall,
+// so the temporal shift's Jacobian (reconnection.h) ranges far from 1. The lens is what makes the
+// case see a temporal J = 1 (|z| 12.3); through a pinhole it does not (0.2): docs/BENCHMARKS.md.
+scene::FrameState dof_corner(const scene::Scene& s, uint32_t f) {
+  scene::FrameState st = s.frame_state(0);
+  const glm::vec3 eye(0.2f + 0.03f * float(f), 1.55f, -0.1f), target(-1.0f, 1.3f, -1.0f);
+  st.camera.position = eye;
+  st.camera.orientation = glm::normalize(glm::quatLookAtRH(glm::normalize(target - eye), glm::vec3(0.0f, 1.0f, 0.0f)));
+  st.camera.yfov = 0.9f;
+  st.camera.aperture = 0.3f;
+  st.camera.focus_distance = 0.4f;
+  return st;
+}
+
 std::vector<Case> cases() {
   std::vector<Case> v;
   v.push_back({.name = "initial_only", .scene = "cornell", .options = [](render::RestirOptions& o) {
@@ -276,6 +292,8 @@ std::vector<Case> cases() {
   // 25 cm per frame, so the image magnifies and pixels at the edges lose their history.
   v.push_back({.name = "gather_forward_motion", .scene = "cornell", .options = [](render::RestirOptions& o) { o.spatial = false; },
                .state = forward_camera});
+  v.push_back({.name = "gather_dof_corner", .scene = "cornell", .options = [](render::RestirOptions& o) { o.spatial = false; },
+               .state = dof_corner});
   v.push_back({.name = "reconnection_shift", .scene = "cornell", .options = [](render::RestirOptions& o) { o.shift = "reconnection"; }});
   v.push_back({.name = "balance_mis_3_neighbours", .scene = "cornell", .options = [](render::RestirOptions& o) {
                  o.mis = "balance";
