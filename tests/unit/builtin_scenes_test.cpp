@@ -110,8 +110,8 @@ INSTANTIATE_TEST_SUITE_P(Builtin, BuiltinScene, ::testing::ValuesIn(builtin_scen
 
 TEST(BuiltinRegistry, NamesCornellFirstAndRejectsUnknownNames) {
   const std::vector<std::string> names = builtin_scene_names();
-  EXPECT_EQ(names, (std::vector<std::string>{"cornell", "carousel", "lod-cliff", "chess", "foliage",
-                                             "overlap-uv", "stiff"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"cornell", "carousel", "carousel-bounce", "lod-cliff", "chess",
+                                             "foliage", "overlap-uv", "stiff"}));
   EXPECT_TRUE(is_builtin_scene("chess"));
   EXPECT_FALSE(is_builtin_scene("Chess"));
   try {
@@ -198,6 +198,31 @@ TEST(BuiltinCarousel, HasGlossyMaterialsAndMovingRing) {
   EXPECT_EQ(s.animation.tracks.size(), 8u);
   EXPECT_NE(s.frame_state(0).transforms, s.frame_state(1).transforms);
   EXPECT_GT(s.environment.radiance.r, 0.0f);
+}
+
+// carousel-bounce is carousel with the overhead light facing the back wall from 40 cm: every
+// other mesh, material and track is carousel's.
+TEST(BuiltinCarouselBounce, IsCarouselWithTheOverheadLightWashingTheBackWall) {
+  const Scene& base = cached("carousel");
+  const Scene& s = cached("carousel-bounce");
+  ASSERT_EQ(s.meshes.size(), base.meshes.size());
+  ASSERT_EQ(s.materials.size(), base.materials.size());
+  EXPECT_EQ(s.animation.tracks.size(), base.animation.tracks.size());
+  EXPECT_EQ(s.frame_state(7).transforms, base.frame_state(7).transforms);
+  EXPECT_EQ(s.frame_state(7).camera.position, base.frame_state(7).camera.position);
+  const Instance& light = instance_named(s, "light");
+  for (size_t m = 0; m < s.meshes.size(); ++m) {
+    const Primitive& p = s.meshes[m].primitives[0];
+    if (m != light.lod_meshes[0]) {
+      EXPECT_EQ(p.positions, base.meshes[m].primitives[0].positions) << s.meshes[m].name;
+      continue;
+    }
+    for (const glm::vec3& v : p.positions) EXPECT_NEAR(v.z, -6.6f, 1e-5f);  // the wall is at z = -7
+    const glm::vec3 a = p.positions[p.indices[0]], b = p.positions[p.indices[1]], c = p.positions[p.indices[2]];
+    const glm::vec3 n = glm::cross(b - a, c - a);
+    EXPECT_LT(n.z, 0.0f) << "faces the wall";
+    EXPECT_EQ(s.materials[p.material].emission, glm::vec3(24.0f));
+  }
 }
 
 TEST(BuiltinFoliage, BladesAreThousandsOfSubPixelTriangles) {

@@ -6,6 +6,7 @@ namespace strata::scene::builtin {
 
 Scene make_cornell();
 Scene make_carousel();
+Scene make_carousel_bounce();
 Scene make_lod_cliff();
 Scene make_chess();
 Scene make_foliage();

@@ -6,6 +6,11 @@
 // (overhead, radiance 6; side, radiance 3) and a dim environment 0.05. Animation: the ring turns 90
 // degrees over 120 frames (a key per frame per object); the camera pans from left to right while
 // aiming at the ring's centre.
+//
+// carousel-bounce: the same scene with the overhead light turned into a wall washer (radiance 24,
+// 40 cm in front of the back wall's top, facing it), so most light reaches the ring after one
+// bounce off the bright patch it makes, which next-event estimation cannot aim at: the light that
+// ReSTIR PT is for (docs/BENCHMARKS.md, "Where the lighting is hard").
 #include <cmath>
 #include <utility>
 
@@ -64,10 +69,10 @@ void add_backdrop(SceneBuilder& b, uint32_t pillar_material, uint32_t slat_mater
   b.instance("wall", b.mesh("wall", {quad({-10, 0, -7}, {20, 0, 0}, {0, 6, 0}, wall_material)}));
 }
 
-}  // namespace
+enum class OverheadLight { ceiling, wall_washer };
 
-Scene make_carousel() {
-  SceneBuilder b("carousel");
+Scene carousel_lit(const char* scene_name, OverheadLight overhead) {
+  SceneBuilder b(scene_name);
   const uint32_t floor = b.material("floor", {0.5f, 0.5f, 0.5f}, 0.0f, 0.8f);
   const uint32_t gold = b.material("gold_metal", {1.0f, 0.78f, 0.34f}, 1.0f, 0.3f);
   const uint32_t red_glossy = b.material("red_glossy", {0.7f, 0.08f, 0.06f}, 0.0f, 0.2f);
@@ -76,7 +81,8 @@ Scene make_carousel() {
   const uint32_t slat = b.material("slat", {0.35f, 0.22f, 0.12f}, 0.0f, 0.6f);
   const uint32_t panel = b.material("panel", {0.2f, 0.45f, 0.3f});
   const uint32_t wall = b.material("wall", {0.6f, 0.6f, 0.62f});
-  const uint32_t light = b.emitter("light", {6.0f, 6.0f, 6.0f});
+  const bool washer = overhead == OverheadLight::wall_washer;
+  const uint32_t light = b.emitter("light", washer ? glm::vec3(24.0f) : glm::vec3(6.0f));
   const uint32_t side_light = b.emitter("side_light", {3.0f, 2.6f, 2.2f});
 
   b.instance("floor", b.mesh("floor", {quad({-10, 0, 10}, {20, 0, 0}, {0, 0, -20}, floor)}));
@@ -120,8 +126,8 @@ Scene make_carousel() {
     });
   }
 
-  b.instance("light",
-             b.mesh("light", {facing_quad({0.0f, 5.0f, 0.5f}, {0, -1, 0}, 2.0f, 1.0f, light)}));
+  b.instance("light", b.mesh("light", {washer ? facing_quad({0.0f, 5.4f, -6.6f}, {0, 0, -1}, 2.0f, 1.0f, light)
+                                              : facing_quad({0.0f, 5.0f, 0.5f}, {0, -1, 0}, 2.0f, 1.0f, light)}));
   b.instance("side_light", b.mesh("side_light", {facing_quad({-6.0f, 2.5f, 2.0f}, {1, -0.3f, -0.2f},
                                                              1.2f, 1.2f, side_light)}));
   b.scene().environment.radiance = glm::vec3(0.05f);
@@ -133,5 +139,11 @@ Scene make_carousel() {
   });
   return b.finish();
 }
+
+}  // namespace
+
+Scene make_carousel() { return carousel_lit("carousel", OverheadLight::ceiling); }
+
+Scene make_carousel_bounce() { return carousel_lit("carousel-bounce", OverheadLight::wall_washer); }
 
 }  // namespace strata::scene::builtin

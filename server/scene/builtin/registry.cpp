@@ -11,9 +11,10 @@ namespace {
 
 using Generator = Scene (*)();
 // The order is the order builtin_scene_names() reports; cornell, the default, comes first.
-constexpr std::array<std::pair<const char*, Generator>, 7> kBuiltins = {{
+constexpr std::array<std::pair<const char*, Generator>, 8> kBuiltins = {{
     {"cornell", builtin::make_cornell},
     {"carousel", builtin::make_carousel},
+    {"carousel-bounce", builtin::make_carousel_bounce},
     {"lod-cliff", builtin::make_lod_cliff},
     {"chess", builtin::make_chess},
     {"foliage", builtin::make_foliage},
