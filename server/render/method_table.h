@@ -59,7 +59,7 @@ inline constexpr const char* k_default_method = "restir-gather";
 // Why, as the session's `method` decision says it when the client named none.
 inline constexpr const char* k_default_method_reason =
     "the default: ReSTIR PT, the method the service is built for; its RelMSE over pt's at equal GPU time on lavapipe, "
-    "256x256: cornell 0.21-0.36, carousel 0.87-0.94, chess 1.1-1.45, foliage 3.3-3.5 (docs/BENCHMARKS.md); pt wins where reuse costs "
-    "as much as the samples it replaces";
+    "256x256: cornell 0.21-0.36, carousel 0.87-0.94, chess 1.1-1.45, foliage 3.3-3.5, carousel-bounce (light one bounce away) 0.24 "
+    "(docs/BENCHMARKS.md); pt wins where its light samples find the light and reuse costs as much as the samples it replaces";
 
 }  // namespace strata::render
