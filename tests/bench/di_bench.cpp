@@ -39,7 +39,7 @@ namespace {
 using namespace strata;
 
 struct Args {
-  uint32_t width = 64, height = 64, frames = 16, seeds = 4, ref_spp = 2048, light_candidates = 8;
+  uint32_t width = 256, height = 256, frames = 16, seeds = 4, ref_spp = 2048, light_candidates = 8;
   std::string out = "di_bench.json";
   std::string device;
 };
