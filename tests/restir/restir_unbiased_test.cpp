@@ -253,14 +253,19 @@ void glossy_tall_box(scene::Scene& s) {
       for (scene::Primitive& p : mesh.primitives) p.material = uint32_t(s.materials.size() - 1);
 }
 
+// The camera at `eye` looking at cornell's back-left corner (y up), with vertical field of view `yfov`.
+void aim_at_corner(scene::FrameState& st, glm::vec3 eye, float yfov) {
+  const glm::vec3 target(-1.0f, 1.3f, -1.0f);
+  st.camera.position = eye;
+  st.camera.orientation = glm::normalize(glm::quatLookAtRH(glm::normalize(target - eye), glm::vec3(0.0f, 1.0f, 0.0f)));
+  st.camera.yfov = yfov;
+}
+
 // A camera close to the back-left corner that sees neither box; the tall box moves in front of the
 // red wall it sees, so the box changes these pixels only through paths that bounce off a seen surface.
 scene::FrameState suffix_only_motion(const scene::Scene& s, uint32_t f) {
   scene::FrameState st = jumping(s, f, "tall_box", {-0.35f, 0.0f, 0.8f});
-  const glm::vec3 eye(0.2f, 1.55f, -0.1f), target(-1.0f, 1.3f, -1.0f);
-  st.camera.position = eye;
-  st.camera.orientation = glm::normalize(glm::quatLookAtRH(glm::normalize(target - eye), glm::vec3(0.0f, 1.0f, 0.0f)));
-  st.camera.yfov = 0.5f;
+  aim_at_corner(st, {0.2f, 1.55f, -0.1f}, 0.5f);
   return st;
 }
 
@@ -271,10 +276,7 @@ scene::FrameState suffix_only_motion(const scene::Scene& s, uint32_t f) {
 // case see a temporal J = 1 (|z| 12.3); through a pinhole it does not (0.2): docs/BENCHMARKS.md.
 scene::FrameState dof_corner(const scene::Scene& s, uint32_t f) {
   scene::FrameState st = s.frame_state(0);
-  const glm::vec3 eye(0.2f + 0.03f * float(f), 1.55f, -0.1f), target(-1.0f, 1.3f, -1.0f);
-  st.camera.position = eye;
-  st.camera.orientation = glm::normalize(glm::quatLookAtRH(glm::normalize(target - eye), glm::vec3(0.0f, 1.0f, 0.0f)));
-  st.camera.yfov = 0.9f;
+  aim_at_corner(st, {0.2f + 0.03f * float(f), 1.55f, -0.1f}, 0.9f);
   st.camera.aperture = 0.3f;
   st.camera.focus_distance = 0.4f;
   return st;

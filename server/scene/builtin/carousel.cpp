@@ -69,9 +69,16 @@ void add_backdrop(SceneBuilder& b, uint32_t pillar_material, uint32_t slat_mater
   b.instance("wall", b.mesh("wall", {quad({-10, 0, -7}, {20, 0, 0}, {0, 6, 0}, wall_material)}));
 }
 
-enum class OverheadLight { ceiling, wall_washer };
+// The overhead light: a 2 m x 1 m emissive quad.
+struct OverheadLight {
+  glm::vec3 centre;
+  glm::vec3 facing;
+  float radiance;
+};
+constexpr OverheadLight k_ceiling_light{{0.0f, 5.0f, 0.5f}, {0, -1, 0}, 6.0f};
+constexpr OverheadLight k_wall_washer{{0.0f, 5.4f, -6.6f}, {0, 0, -1}, 24.0f};  // 40 cm from the wall
 
-Scene carousel_lit(const char* scene_name, OverheadLight overhead) {
+Scene carousel_lit(const char* scene_name, const OverheadLight& overhead) {
   SceneBuilder b(scene_name);
   const uint32_t floor = b.material("floor", {0.5f, 0.5f, 0.5f}, 0.0f, 0.8f);
   const uint32_t gold = b.material("gold_metal", {1.0f, 0.78f, 0.34f}, 1.0f, 0.3f);
@@ -81,8 +88,7 @@ Scene carousel_lit(const char* scene_name, OverheadLight overhead) {
   const uint32_t slat = b.material("slat", {0.35f, 0.22f, 0.12f}, 0.0f, 0.6f);
   const uint32_t panel = b.material("panel", {0.2f, 0.45f, 0.3f});
   const uint32_t wall = b.material("wall", {0.6f, 0.6f, 0.62f});
-  const bool washer = overhead == OverheadLight::wall_washer;
-  const uint32_t light = b.emitter("light", washer ? glm::vec3(24.0f) : glm::vec3(6.0f));
+  const uint32_t light = b.emitter("light", glm::vec3(overhead.radiance));
   const uint32_t side_light = b.emitter("side_light", {3.0f, 2.6f, 2.2f});
 
   b.instance("floor", b.mesh("floor", {quad({-10, 0, 10}, {20, 0, 0}, {0, 0, -20}, floor)}));
@@ -126,8 +132,7 @@ Scene carousel_lit(const char* scene_name, OverheadLight overhead) {
     });
   }
 
-  b.instance("light", b.mesh("light", {washer ? facing_quad({0.0f, 5.4f, -6.6f}, {0, 0, -1}, 2.0f, 1.0f, light)
-                                              : facing_quad({0.0f, 5.0f, 0.5f}, {0, -1, 0}, 2.0f, 1.0f, light)}));
+  b.instance("light", b.mesh("light", {facing_quad(overhead.centre, overhead.facing, 2.0f, 1.0f, light)}));
   b.instance("side_light", b.mesh("side_light", {facing_quad({-6.0f, 2.5f, 2.0f}, {1, -0.3f, -0.2f},
                                                              1.2f, 1.2f, side_light)}));
   b.scene().environment.radiance = glm::vec3(0.05f);
@@ -142,8 +147,8 @@ Scene carousel_lit(const char* scene_name, OverheadLight overhead) {
 
 }  // namespace
 
-Scene make_carousel() { return carousel_lit("carousel", OverheadLight::ceiling); }
+Scene make_carousel() { return carousel_lit("carousel", k_ceiling_light); }
 
-Scene make_carousel_bounce() { return carousel_lit("carousel-bounce", OverheadLight::wall_washer); }
+Scene make_carousel_bounce() { return carousel_lit("carousel-bounce", k_wall_washer); }
 
 }  // namespace strata::scene::builtin
