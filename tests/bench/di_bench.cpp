@@ -15,6 +15,7 @@
 //   stability  per frame, the same LumaRMSE between consecutive frames (static camera only)
 //   accumulated (static only) the mean of frames 0..F-1 against the reference: RGB RMSE and the
 //              luma ratio mean(Y(acc)) / mean(Y(ref))
+// Each metric over every pixel ("all") and over the pixels that see no emitter ("reflected").
 // Each figure is the mean over --seeds independent sequences; JSON plus a table on stdout.
 #include <CLI/CLI.hpp>
 #include <chrono>
@@ -51,32 +52,47 @@ struct Config {
 
 double luma(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
 
-double luma_rmse(const image::Image& a, const image::Image& b) {
+// The pixels a metric counts: all, or those that see no emitter directly. A pixel that sees the
+// light is estimated by its one camera sample (reuse resamples the light reflected at x1, never what
+// x1 emits), and at the ceiling light's edge one such sample is 40x the reflected light: a few edge
+// pixels then make the whole LumaRMSE and hide what reuse does everywhere else.
+using Mask = std::vector<uint8_t>;  // 1: counted
+
+double luma_rmse(const image::Image& a, const image::Image& b, const Mask& m) {
   double s = 0.0;
-  size_t n = size_t(a.width) * a.height;
+  size_t n = size_t(a.width) * a.height, k = 0;
   for (size_t i = 0; i < n; ++i) {
+    if (!m[i]) continue;
     double d = luma(&a.rgba[4 * i]) - luma(&b.rgba[4 * i]);
     s += d * d;
+    ++k;
   }
-  return std::sqrt(s / double(n));
+  return std::sqrt(s / double(k));
 }
 
-double rgb_rmse(const image::Image& a, const image::Image& b) {
+double rgb_rmse(const image::Image& a, const image::Image& b, const Mask& m) {
   double s = 0.0;
-  size_t n = size_t(a.width) * a.height;
-  for (size_t i = 0; i < n; ++i)
+  size_t n = size_t(a.width) * a.height, k = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (!m[i]) continue;
     for (int c = 0; c < 3; ++c) {
       double d = double(a.rgba[4 * i + c]) - b.rgba[4 * i + c];
       s += d * d;
     }
-  return std::sqrt(s / double(3 * n));
+    ++k;
+  }
+  return std::sqrt(s / double(3 * k));
 }
 
-double mean_luma(const image::Image& a) {
+double mean_luma(const image::Image& a, const Mask& m) {
   double s = 0.0;
-  size_t n = size_t(a.width) * a.height;
-  for (size_t i = 0; i < n; ++i) s += luma(&a.rgba[4 * i]);
-  return s / double(n);
+  size_t n = size_t(a.width) * a.height, k = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (m[i]) {
+      s += luma(&a.rgba[4 * i]);
+      ++k;
+    }
+  return s / double(k);
 }
 
 // The moving camera: cornell's camera panned sideways and yawed a little more every frame.
@@ -104,13 +120,13 @@ int run(const Args& a) {
       {"temporal-biased", [](render::RestirOptions& o) { o.spatial = false; o.unbiased = false; }},
       {"temporal+spatial", [](render::RestirOptions&) {}},
   };
-  auto settings = [&](const std::string& method, uint32_t spp, uint32_t seed) {
+  auto settings = [&](const std::string& method, uint32_t spp, uint32_t seed, uint32_t max_depth = 2) {
     render::RenderSettings rs;
     rs.width = a.width;
     rs.height = a.height;
     rs.method = method;
     rs.spp = spp;
-    rs.max_depth = 2;
+    rs.max_depth = max_depth;
     rs.seed = seed;
     rs.restir.light_candidates = a.light_candidates;
     return rs;
@@ -120,19 +136,34 @@ int run(const Args& a) {
                         {"reference_spp", a.ref_spp}, {"light_candidates", a.light_candidates}, {"cameras", nlohmann::json::object()}};
   std::fprintf(stderr, "device: %s\n", ctx.device_name().c_str());
 
+  // Each metric is taken twice: over every pixel ("all") and over the pixels that see no emitter
+  // ("reflected"; Mask above). The reflected figures are what reuse can change.
+  const std::vector<std::string> sets = {"all", "reflected"};
   for (const std::string camera : {"static", "moving"}) {
     const bool moving = camera == "moving";
+    const uint32_t states = moving ? a.frames : 1u;
     auto state = [&](uint32_t f) { return moving ? moving_state(sc, f) : sc.frame_state(0); };
-    // References: one per distinct frame state, accumulated by pt with the same one-bounce paths.
+    // References: one per distinct frame state, accumulated by pt with the same one-bounce paths;
+    // and what each pixel sees directly (pt with max_depth 1: emission at x1 only), for the mask.
     std::vector<image::Image> refs;
-    for (uint32_t f = 0; f < (moving ? a.frames : 1u); ++f) {
+    std::vector<std::map<std::string, Mask>> masks;
+    uint64_t direct_pixels = 0;
+    for (uint32_t f = 0; f < states; ++f) {
       render::Renderer r(ctx, sc, settings("pt", 64, 9001 + f));
       image::Image img;
       for (uint32_t done = 0; done < a.ref_spp; done += 64) img = r.render(state(f), 0, done > 0).image;
       refs.push_back(std::move(img));
+      render::Renderer e(ctx, sc, settings("pt", 256, 7001 + f, 1));
+      image::Image emitted = e.render(state(f), 0).image;
+      Mask reflected(size_t(a.width) * a.height);
+      for (size_t i = 0; i < reflected.size(); ++i) reflected[i] = luma(&emitted.rgba[4 * i]) > 0.0 ? 0 : 1;
+      for (uint8_t m : reflected) direct_pixels += m ? 0 : 1;
+      masks.push_back({{"all", Mask(reflected.size(), 1)}, {"reflected", std::move(reflected)}});
     }
     auto ref_of = [&](uint32_t f) -> const image::Image& { return refs[moving ? f : 0]; };
-    std::fprintf(stderr, "[%s] references done\n", camera.c_str());
+    auto mask_of = [&](uint32_t f, const std::string& set) -> const Mask& { return masks[moving ? f : 0].at(set); };
+    std::fprintf(stderr, "[%s] references done; %.2f%% of the pixels see an emitter\n", camera.c_str(),
+                 100.0 * double(direct_pixels) / (double(states) * a.width * a.height));
 
     nlohmann::json cj = nlohmann::json::object();
     for (const auto& cfg : configs) {
@@ -142,9 +173,14 @@ int run(const Args& a) {
         render::Renderer r(ctx, sc, rs);
         for (uint32_t f = 0; f < 2; ++f) r.render(state(f), f);
       }
-      double acc_sum = 0.0, stab_sum = 0.0, accum_rmse = 0.0, accum_luma_ratio = 0.0, ms_sum = 0.0;
-      std::vector<double> acc_by_frame(a.frames, 0.0);
-      uint32_t acc_n = 0, stab_n = 0, ms_n = 0;
+      struct Sums {
+        double acc = 0.0, stab = 0.0, accum_rmse = 0.0, accum_luma_ratio = 0.0;
+        std::vector<double> acc_by_frame;
+      };
+      std::map<std::string, Sums> sums;
+      for (const auto& set : sets) sums[set].acc_by_frame.assign(a.frames, 0.0);
+      double ms_sum = 0.0;
+      uint32_t acc_n = 0, stab_n = 0;
       for (uint32_t s = 0; s < a.seeds; ++s) {
         auto rs = settings("restir-di", 1, 17 + 101 * s);
         cfg.set(rs.restir);
@@ -152,17 +188,16 @@ int run(const Args& a) {
         image::Image prev, sum;
         for (uint32_t f = 0; f < a.frames; ++f) {
           auto fr = r.render(state(f), f);
-          double e = luma_rmse(fr.image, ref_of(f));
-          acc_by_frame[f] += e / a.seeds;
-          if (f >= 1) {
-            acc_sum += e;
-            ++acc_n;
-            ms_sum += fr.stats.gpu_ms_total;
-            ++ms_n;
+          for (const auto& set : sets) {
+            double e = luma_rmse(fr.image, ref_of(f), mask_of(f, set));
+            sums[set].acc_by_frame[f] += e / a.seeds;
+            if (f >= 1) sums[set].acc += e;
+            if (f >= 1 && !moving) sums[set].stab += luma_rmse(fr.image, prev, mask_of(f, set));
           }
-          if (f >= 1 && !moving) {
-            stab_sum += luma_rmse(fr.image, prev);
-            ++stab_n;
+          if (f >= 1) {
+            ms_sum += fr.stats.gpu_ms_total;
+            ++acc_n;
+            if (!moving) ++stab_n;
           }
           if (sum.rgba.empty()) sum = fr.image;
           else
@@ -170,22 +205,28 @@ int run(const Args& a) {
           prev = std::move(fr.image);
         }
         for (float& v : sum.rgba) v /= float(a.frames);
+        if (!moving)
+          for (const auto& set : sets) {
+            sums[set].accum_rmse += rgb_rmse(sum, ref_of(0), mask_of(0, set)) / a.seeds;
+            sums[set].accum_luma_ratio +=
+                mean_luma(sum, mask_of(0, set)) / mean_luma(ref_of(0), mask_of(0, set)) / a.seeds;
+          }
+      }
+      nlohmann::json j = {{"mean_gpu_ms_frames_1_to_F", ms_sum / acc_n}};
+      for (const auto& set : sets) {
+        const Sums& m = sums[set];
+        nlohmann::json js = {{"accuracy_luma_rmse_mean", m.acc / acc_n}, {"accuracy_luma_rmse_by_frame", m.acc_by_frame}};
+        std::printf("%-7s %-17s %-9s accuracy LumaRMSE %.5f", camera.c_str(), cfg.name.c_str(), set.c_str(), m.acc / acc_n);
         if (!moving) {
-          accum_rmse += rgb_rmse(sum, ref_of(0)) / a.seeds;
-          accum_luma_ratio += mean_luma(sum) / mean_luma(ref_of(0)) / a.seeds;
+          js["stability_luma_rmse_mean"] = m.stab / stab_n;
+          js["accumulated_rgb_rmse"] = m.accum_rmse;
+          js["accumulated_luma_ratio"] = m.accum_luma_ratio;
+          std::printf(" | stability %.5f | accumulated RGB RMSE %.5f luma ratio %.4f", m.stab / stab_n, m.accum_rmse,
+                      m.accum_luma_ratio);
         }
+        std::printf(" | %.2f ms/frame\n", ms_sum / acc_n);
+        j[set] = js;
       }
-      nlohmann::json j = {{"accuracy_luma_rmse_mean", acc_sum / acc_n}, {"accuracy_luma_rmse_by_frame", acc_by_frame},
-                          {"mean_gpu_ms_frames_1_to_F", ms_sum / ms_n}};
-      std::printf("%-7s %-17s accuracy LumaRMSE %.5f", camera.c_str(), cfg.name.c_str(), acc_sum / acc_n);
-      if (!moving) {
-        j["stability_luma_rmse_mean"] = stab_sum / stab_n;
-        j["accumulated_rgb_rmse"] = accum_rmse;
-        j["accumulated_luma_ratio"] = accum_luma_ratio;
-        std::printf(" | stability %.5f | accumulated RGB RMSE %.5f luma ratio %.4f", stab_sum / stab_n, accum_rmse,
-                    accum_luma_ratio);
-      }
-      std::printf(" | %.2f ms/frame\n", ms_sum / ms_n);
       std::fflush(stdout);
       cj[cfg.name] = j;
     }
