@@ -24,7 +24,6 @@
 #include <ctime>
 #include <fstream>
 #include <functional>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -56,43 +55,43 @@ double luma(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[
 // light is estimated by its one camera sample (reuse resamples the light reflected at x1, never what
 // x1 emits), and at the ceiling light's edge one such sample is 40x the reflected light: a few edge
 // pixels then make the whole LumaRMSE and hide what reuse does everywhere else.
-using Mask = std::vector<uint8_t>;  // 1: counted
+using Mask = std::vector<uint8_t>;  // 1: counted; empty: every pixel
+enum PixelSet : size_t { k_all, k_reflected, k_pixel_sets };
+constexpr const char* k_pixel_set_names[k_pixel_sets] = {"all", "reflected"};
 
-double luma_rmse(const image::Image& a, const image::Image& b, const Mask& m) {
+// The mean of per_pixel(i) over the pixels that mask m counts.
+template <class PerPixel>
+double masked_mean(const image::Image& a, const Mask& m, PerPixel per_pixel) {
   double s = 0.0;
   size_t n = size_t(a.width) * a.height, k = 0;
   for (size_t i = 0; i < n; ++i) {
-    if (!m[i]) continue;
-    double d = luma(&a.rgba[4 * i]) - luma(&b.rgba[4 * i]);
-    s += d * d;
+    if (!m.empty() && !m[i]) continue;
+    s += per_pixel(i);
     ++k;
   }
-  return std::sqrt(s / double(k));
+  return s / double(k);
+}
+
+double luma_rmse(const image::Image& a, const image::Image& b, const Mask& m) {
+  return std::sqrt(masked_mean(a, m, [&](size_t i) {
+    double d = luma(&a.rgba[4 * i]) - luma(&b.rgba[4 * i]);
+    return d * d;
+  }));
 }
 
 double rgb_rmse(const image::Image& a, const image::Image& b, const Mask& m) {
-  double s = 0.0;
-  size_t n = size_t(a.width) * a.height, k = 0;
-  for (size_t i = 0; i < n; ++i) {
-    if (!m[i]) continue;
+  return std::sqrt(masked_mean(a, m, [&](size_t i) {
+    double s = 0.0;
     for (int c = 0; c < 3; ++c) {
       double d = double(a.rgba[4 * i + c]) - b.rgba[4 * i + c];
       s += d * d;
     }
-    ++k;
-  }
-  return std::sqrt(s / double(3 * k));
+    return s / 3.0;
+  }));
 }
 
 double mean_luma(const image::Image& a, const Mask& m) {
-  double s = 0.0;
-  size_t n = size_t(a.width) * a.height, k = 0;
-  for (size_t i = 0; i < n; ++i)
-    if (m[i]) {
-      s += luma(&a.rgba[4 * i]);
-      ++k;
-    }
-  return s / double(k);
+  return masked_mean(a, m, [&](size_t i) { return luma(&a.rgba[4 * i]); });
 }
 
 // The moving camera: cornell's camera panned sideways and yawed a little more every frame.
@@ -136,9 +135,8 @@ int run(const Args& a) {
                         {"reference_spp", a.ref_spp}, {"light_candidates", a.light_candidates}, {"cameras", nlohmann::json::object()}};
   std::fprintf(stderr, "device: %s\n", ctx.device_name().c_str());
 
-  // Each metric is taken twice: over every pixel ("all") and over the pixels that see no emitter
-  // ("reflected"; Mask above). The reflected figures are what reuse can change.
-  const std::vector<std::string> sets = {"all", "reflected"};
+  // Each metric is taken twice: over every pixel and over the pixels that see no emitter
+  // (PixelSet, Mask above). The reflected figures are what reuse can change.
   for (const std::string camera : {"static", "moving"}) {
     const bool moving = camera == "moving";
     const uint32_t states = moving ? a.frames : 1u;
@@ -146,7 +144,7 @@ int run(const Args& a) {
     // References: one per distinct frame state, accumulated by pt with the same one-bounce paths;
     // and what each pixel sees directly (pt with max_depth 1: emission at x1 only), for the mask.
     std::vector<image::Image> refs;
-    std::vector<std::map<std::string, Mask>> masks;
+    std::vector<Mask> reflected_masks;
     uint64_t direct_pixels = 0;
     for (uint32_t f = 0; f < states; ++f) {
       render::Renderer r(ctx, sc, settings("pt", 64, 9001 + f));
@@ -156,14 +154,22 @@ int run(const Args& a) {
       render::Renderer e(ctx, sc, settings("pt", 256, 7001 + f, 1));
       image::Image emitted = e.render(state(f), 0).image;
       Mask reflected(size_t(a.width) * a.height);
-      for (size_t i = 0; i < reflected.size(); ++i) reflected[i] = luma(&emitted.rgba[4 * i]) > 0.0 ? 0 : 1;
-      for (uint8_t m : reflected) direct_pixels += m ? 0 : 1;
-      masks.push_back({{"all", Mask(reflected.size(), 1)}, {"reflected", std::move(reflected)}});
+      for (size_t i = 0; i < reflected.size(); ++i) {
+        bool sees_emitter = luma(&emitted.rgba[4 * i]) > 0.0;
+        reflected[i] = sees_emitter ? 0 : 1;
+        direct_pixels += sees_emitter ? 1 : 0;
+      }
+      reflected_masks.push_back(std::move(reflected));
     }
     auto ref_of = [&](uint32_t f) -> const image::Image& { return refs[moving ? f : 0]; };
-    auto mask_of = [&](uint32_t f, const std::string& set) -> const Mask& { return masks[moving ? f : 0].at(set); };
+    const Mask every_pixel;
+    auto mask_of = [&](uint32_t f, size_t set) -> const Mask& {
+      return set == k_reflected ? reflected_masks[moving ? f : 0] : every_pixel;
+    };
     std::fprintf(stderr, "[%s] references done; %.2f%% of the pixels see an emitter\n", camera.c_str(),
                  100.0 * double(direct_pixels) / (double(states) * a.width * a.height));
+    double ref_mean_luma[k_pixel_sets];  // the static reference's, for the accumulated luma ratio
+    for (size_t set = 0; set < k_pixel_sets; ++set) ref_mean_luma[set] = mean_luma(ref_of(0), mask_of(0, set));
 
     nlohmann::json cj = nlohmann::json::object();
     for (const auto& cfg : configs) {
@@ -177,8 +183,8 @@ int run(const Args& a) {
         double acc = 0.0, stab = 0.0, accum_rmse = 0.0, accum_luma_ratio = 0.0;
         std::vector<double> acc_by_frame;
       };
-      std::map<std::string, Sums> sums;
-      for (const auto& set : sets) sums[set].acc_by_frame.assign(a.frames, 0.0);
+      Sums sums[k_pixel_sets];
+      for (Sums& m : sums) m.acc_by_frame.assign(a.frames, 0.0);
       double ms_sum = 0.0;
       uint32_t acc_n = 0, stab_n = 0;
       for (uint32_t s = 0; s < a.seeds; ++s) {
@@ -188,7 +194,7 @@ int run(const Args& a) {
         image::Image prev, sum;
         for (uint32_t f = 0; f < a.frames; ++f) {
           auto fr = r.render(state(f), f);
-          for (const auto& set : sets) {
+          for (size_t set = 0; set < k_pixel_sets; ++set) {
             double e = luma_rmse(fr.image, ref_of(f), mask_of(f, set));
             sums[set].acc_by_frame[f] += e / a.seeds;
             if (f >= 1) sums[set].acc += e;
@@ -206,17 +212,17 @@ int run(const Args& a) {
         }
         for (float& v : sum.rgba) v /= float(a.frames);
         if (!moving)
-          for (const auto& set : sets) {
+          for (size_t set = 0; set < k_pixel_sets; ++set) {
             sums[set].accum_rmse += rgb_rmse(sum, ref_of(0), mask_of(0, set)) / a.seeds;
-            sums[set].accum_luma_ratio +=
-                mean_luma(sum, mask_of(0, set)) / mean_luma(ref_of(0), mask_of(0, set)) / a.seeds;
+            sums[set].accum_luma_ratio += mean_luma(sum, mask_of(0, set)) / ref_mean_luma[set] / a.seeds;
           }
       }
       nlohmann::json j = {{"mean_gpu_ms_frames_1_to_F", ms_sum / acc_n}};
-      for (const auto& set : sets) {
+      for (size_t set = 0; set < k_pixel_sets; ++set) {
         const Sums& m = sums[set];
+        const char* set_name = k_pixel_set_names[set];
         nlohmann::json js = {{"accuracy_luma_rmse_mean", m.acc / acc_n}, {"accuracy_luma_rmse_by_frame", m.acc_by_frame}};
-        std::printf("%-7s %-17s %-9s accuracy LumaRMSE %.5f", camera.c_str(), cfg.name.c_str(), set.c_str(), m.acc / acc_n);
+        std::printf("%-7s %-17s %-9s accuracy LumaRMSE %.5f", camera.c_str(), cfg.name.c_str(), set_name, m.acc / acc_n);
         if (!moving) {
           js["stability_luma_rmse_mean"] = m.stab / stab_n;
           js["accumulated_rgb_rmse"] = m.accum_rmse;
@@ -225,7 +231,7 @@ int run(const Args& a) {
                       m.accum_luma_ratio);
         }
         std::printf(" | %.2f ms/frame\n", ms_sum / acc_n);
-        j[set] = js;
+        j[set_name] = js;
       }
       std::fflush(stdout);
       cj[cfg.name] = j;
