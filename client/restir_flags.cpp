@@ -25,6 +25,12 @@ void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
                   "ReSTIR: G x G stratified camera samples for what pixels at edges of directly seen emission see (1..8; default 3)");
   cmd->add_option("--albedo-strata", r.albedo_strata,
                   "ReSTIR gather: G x G camera samples of the albedo control variate at albedo edges (1..8; 1: off; default 2)");
+  cmd->add_option("--layers", r.layers,
+                  "restir-multilayer: pixel layers (0..8; 0: auto, measured from the scene's depth complexity; default 0)");
+  cmd->add_option("--hole-fill-radius", r.hole_fill_radius, "restir-multilayer: hole filling radius in pixels (0..8; 0: off; default 3)");
+  cmd->add_option("--layer-mode", r.layer_mode,
+                  "restir-multilayer: active | uniform | no-depth-ranges (the ML paper's validation variants; default active)")
+      ->check(CLI::IsMember({"active", "uniform", "no-depth-ranges"}));
   cmd->add_flag("--no-temporal", r.no_temporal, "ReSTIR: no temporal reuse");
   cmd->add_flag("--no-temporal-filter", r.no_temporal_filter, "ReSTIR gather: take history from any previous pixel (no surface test)");
   cmd->add_flag("--no-spatial", r.no_spatial, "ReSTIR: no spatial reuse");
@@ -52,6 +58,9 @@ std::string restir_flags_text(const RestirFlags& r) {
   if (r.disocclusion_spatial_neighbors) add("--disocclusion-spatial-neighbors", std::to_string(*r.disocclusion_spatial_neighbors));
   if (r.direct_strata) add("--direct-strata", std::to_string(*r.direct_strata));
   if (r.albedo_strata) add("--albedo-strata", std::to_string(*r.albedo_strata));
+  if (r.layers) add("--layers", std::to_string(*r.layers));
+  if (r.hole_fill_radius) add("--hole-fill-radius", std::to_string(*r.hole_fill_radius));
+  if (!r.layer_mode.empty()) add("--layer-mode", r.layer_mode);
   if (r.no_temporal) add("--no-temporal", "");
   if (r.no_temporal_filter) add("--no-temporal-filter", "");
   if (r.no_spatial) add("--no-spatial", "");
@@ -80,6 +89,13 @@ void set_restir_options(const RestirFlags& r, v1::RenderOptions& o) {
   if (r.disocclusion_spatial_neighbors) o.set_disocclusion_spatial_neighbors(*r.disocclusion_spatial_neighbors);
   if (r.direct_strata) o.set_direct_strata(*r.direct_strata);
   if (r.albedo_strata) o.set_albedo_strata(*r.albedo_strata);
+  if (r.layers) o.set_layers(*r.layers);
+  if (r.hole_fill_radius) o.set_hole_fill_radius(*r.hole_fill_radius);
+  if (r.layer_mode == "active") o.set_layer_mode(v1::LAYER_MODE_ACTIVE);
+  else if (r.layer_mode == "uniform") o.set_layer_mode(v1::LAYER_MODE_UNIFORM);
+  else if (r.layer_mode == "no-depth-ranges") o.set_layer_mode(v1::LAYER_MODE_NO_DEPTH_RANGES);
+  else if (!r.layer_mode.empty())
+    throw std::runtime_error("--layer-mode: '" + r.layer_mode + "' is not one of active, uniform, no-depth-ranges");
   if (r.no_temporal) o.set_temporal_reuse(false);
   if (r.no_temporal_filter) o.set_temporal_filter(false);
   if (r.no_spatial) o.set_spatial_reuse(false);

@@ -112,6 +112,12 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_option("--albedo-strata", r.albedo_strata,
                   "ReSTIR gather: G x G camera samples of the albedo control variate at albedo edges (1..8; 1: off)")
       ->capture_default_str();
+  cmd->add_option("--layers", r.layers, "restir-multilayer: pixel layers (1..8; 0: auto, from the scene's depth complexity)")
+      ->capture_default_str();
+  cmd->add_option("--hole-fill-radius", r.hole_fill_radius, "restir-multilayer: hole filling radius in pixels (0..8; 0: off)")
+      ->capture_default_str();
+  cmd->add_option("--layer-mode", r.layer_mode, "restir-multilayer: active | uniform | no-depth-ranges (ML validation variants)")
+      ->capture_default_str();
   cmd->add_flag("!--no-temporal-filter", r.temporal_filter, "ReSTIR gather: history from any previous pixel (no surface test)");
   cmd->add_flag("!--no-temporal", r.temporal, "ReSTIR: no temporal reuse");
   cmd->add_flag("!--no-spatial", r.spatial, "ReSTIR: no spatial reuse");

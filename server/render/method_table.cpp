@@ -8,6 +8,7 @@ const char* stage_name(StageKind kind) {
   switch (kind) {
     case StageKind::path_trace: return "path_trace";
     case StageKind::primary: return "primary";
+    case StageKind::domain_init: return "domain_init";
     case StageKind::initial: return "initial";
     case StageKind::temporal_gather: return "temporal-gather";
     case StageKind::temporal_splat: return "temporal-splat";
@@ -19,6 +20,7 @@ const char* stage_name(StageKind kind) {
 
 std::vector<StageKind> MethodSpec::stages() const {
   if (!reuse) return {StageKind::path_trace};
+  if (layers) return {StageKind::primary, StageKind::domain_init, StageKind::initial, temporal, StageKind::spatial, StageKind::shade};
   return {StageKind::primary, StageKind::initial, temporal, StageKind::spatial, StageKind::shade};
 }
 
@@ -36,6 +38,9 @@ const std::vector<MethodSpec>& method_table() {
        false, true, false, false, S::temporal_splat, false, 2.0f},
       {"restir-splat-backup", "reservoir splatting with the backprojected backup sample (RS-main 4.2)", true, false, true, true,
        false, S::temporal_splat, false, 2.0f},
+      {"restir-multilayer",
+       "multi-layer reservoir splatting: pixel-layer domains with depth ranges, active domains kept through disocclusions (ML)", true,
+       false, true, false, true, S::temporal_splat, false, 2.0f},
   };
   return table;
 }

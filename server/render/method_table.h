@@ -13,6 +13,7 @@ namespace strata::render {
 enum class StageKind {
   path_trace,       // pt: the reference path tracer
   primary,          // the visibility buffer: the pixel-centre hit of every pixel
+  domain_init,      // pixel-layer domains: propagation, representative hits, depth ranges, compaction (ML 4.3, 5)
   initial,          // canonical samples (N_init candidate paths per pixel)
   temporal_gather,  // the previous reservoir at the backprojected pixel (Lin 2022 section 7)
   temporal_splat,   // previous reservoirs splatted forward (RS-main 4.1), four passes

@@ -6,6 +6,7 @@
 
 #include "render/frame_constants.h"
 #include "render/method_table.h"
+#include "restir/layer_data.h"
 #include "restir/restir_limits.h"
 
 namespace strata::render {
@@ -81,6 +82,11 @@ void RestirOptions::validate() const {
           "restir.albedo_strata = " + std::to_string(albedo_strata) + " is outside " + range(1u, RESTIR_MAX_DIRECT_STRATA));
   require(splats_per_frame >= 1 && splats_per_frame <= RESTIR_MAX_SPLATS_PER_FRAME,
           "restir.splats_per_frame = " + std::to_string(splats_per_frame) + " is outside " + range(1u, RESTIR_MAX_SPLATS_PER_FRAME));
+  require(layers <= LAYERS_MAX, "restir.layers = " + std::to_string(layers) + " is outside " + range(0u, LAYERS_MAX) + " (0 = auto)");
+  require(hole_fill_radius <= RESTIR_MAX_HOLE_FILL_RADIUS,
+          "restir.hole_fill_radius = " + std::to_string(hole_fill_radius) + " is outside " + range(0u, RESTIR_MAX_HOLE_FILL_RADIUS));
+  require(layer_mode == "active" || layer_mode == "uniform" || layer_mode == "no-depth-ranges",
+          "restir.layer_mode = '" + layer_mode + "' is not one of: active, uniform, no-depth-ranges");
 }
 
 Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSettings settings)

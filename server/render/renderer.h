@@ -62,6 +62,13 @@ struct RestirOptions {
   // instance its primary vertex or pixel centre lies on); 0: the moving cap. Chosen by measurement:
   // docs/BENCHMARKS.md, "What the reuse passes spend besides rays".
   float still_confidence_cap = 8.0f;
+  // restir-multilayer (the ML paper; docs/ARCHITECTURE.md, "Pixel layers"): k pixel layers per pixel
+  // (0: auto, measured from the scene's visible depth complexity on the first frame), the hole
+  // filling radius in pixels (ML 4.3; 0: off) and the layer mode: active (the method), uniform or
+  // no-depth-ranges (the ML paper's validation variants, Fig. 5 and Table 1).
+  uint32_t layers = 0;
+  uint32_t hole_fill_radius = 3;
+  std::string layer_mode = "active";
   float moving_cap(const MethodSpec& method) const { return confidence_cap > 0.0f ? confidence_cap : method.confidence_cap; }
   float still_cap(const MethodSpec& method) const {
     return still_confidence_cap > 0.0f ? still_confidence_cap : moving_cap(method);

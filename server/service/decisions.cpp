@@ -178,9 +178,25 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
     std::string value = "1", reason = "method " + m + " has no pixel layers; used by multi-layer methods";
     if (method.layers) {
       value = eff.layers() == 0 ? "auto" : u(eff.layers());
-      reason = eff.layers() == 0 ? "auto: chosen per frame from the depth complexity" : "requested";
+      reason = eff.layers() == 0 ? "auto: measured from the scene's visible depth complexity on its first frame (pixel-centre rays walked "
+                                   "through their surfaces; a deep layer is kept while 10% of them reach it); every Frame's domain_init "
+                                   "pass decision gives the count and the measured shares"
+                                 : "requested";
     }
     out.push_back(make("layers", requested, value, method.layers, reason));
+    const std::string not_layers = "method " + m + " has no pixel layers; used by restir-multilayer";
+    out.push_back(make("hole_fill_radius", asked(req.has_hole_fill_radius(), u(req.hole_fill_radius())), u(eff.hole_fill_radius()),
+                       method.layers && eff.layer_mode() != v1::LAYER_MODE_UNIFORM,
+                       !method.layers ? not_layers
+                       : eff.layer_mode() == v1::LAYER_MODE_UNIFORM
+                           ? "layer_mode uniform keeps every layer active: nothing to fill"
+                           : "deep domains within this radius of a propagated one sample too, without propagating (ML 4.3; the paper uses 3)"));
+    out.push_back(make("layer_mode", asked(req.has_layer_mode(), layer_mode_name(req.layer_mode())), layer_mode_name(eff.layer_mode()),
+                       method.layers,
+                       !method.layers ? not_layers
+                       : eff.layer_mode() == v1::LAYER_MODE_ACTIVE
+                           ? "active domains propagated by representative hits, depth ranges (ML)"
+                           : "a validation variant of the ML paper (Fig. 5, Table 1)"));
   }
   out.push_back(make("splats_per_frame", asked(req.has_splats_per_frame(), u(req.splats_per_frame())),
                      u(eff.splats_per_frame()), method.splatting,

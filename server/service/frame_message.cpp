@@ -30,6 +30,21 @@ void fill_statistics(const render::FrameStats& s, v1::FrameStatistics* out) {
       splats->set_max_per_pixel(uint32_t(s.reuse.at("splat.max_per_pixel")));
       splats->set_holes(s.reuse.at("temporal.no_history"));
     }
+    // Pixel-layer domains (restir-multilayer; ML Table 1).
+    if (s.reuse.contains("domains.deep")) {
+      for (uint32_t layer = 0;; ++layer) {
+        auto n = s.reuse.find("domains.active_layer_" + std::to_string(layer));
+        if (n == s.reuse.end()) break;
+        reuse->add_active_domains_by_layer(n->second);
+      }
+      auto get = [&](const char* key) { return s.reuse.contains(key) ? s.reuse.at(key) : uint64_t(0); };
+      reuse->set_deep_domains(get("domains.deep"));
+      reuse->set_uniform_deep_domains(get("domains.uniform_deep"));
+      reuse->set_disoccluded_pixels(get("domains.disoccluded"));
+      reuse->set_disoccluded_covered(get("domains.disoccluded_covered"));
+      const uint64_t disoccluded = get("domains.disoccluded");
+      reuse->set_coverage_rate(disoccluded > 0 ? double(get("domains.disoccluded_covered")) / double(disoccluded) : 0.0);
+    }
   }
 }
 

@@ -5,6 +5,7 @@
 
 #include "render/method_table.h"
 #include "render/renderer.h"
+#include "restir/layer_data.h"
 #include "restir/restir_limits.h"
 #include "service/errors.h"
 #include "service/input_checks.h"
@@ -46,7 +47,10 @@ void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, cons
   check_enum(o.has_suffix(), o.suffix(), &v1::Suffix_IsValid, p + "suffix", "SUFFIX_AUTO, SUFFIX_REPLAY, SUFFIX_CACHED, SUFFIX_FAIL");
   check_enum(o.has_lod_mapping(), o.lod_mapping(), &v1::LodMapping_IsValid, p + "lod_mapping",
                              "LOD_MAPPING_AUTO, LOD_MAPPING_OFF, LOD_MAPPING_UV");
-  check_range(o.has_layers(), o.layers(), 0, 8, p + "layers", "0 = auto");
+  check_range(o.has_layers(), o.layers(), 0, gpu::LAYERS_MAX, p + "layers", "0 = auto");
+  check_range(o.has_hole_fill_radius(), o.hole_fill_radius(), 0, gpu::RESTIR_MAX_HOLE_FILL_RADIUS, p + "hole_fill_radius", "0 = off");
+  check_enum(o.has_layer_mode(), o.layer_mode(), &v1::LayerMode_IsValid, p + "layer_mode",
+             "LAYER_MODE_ACTIVE, LAYER_MODE_UNIFORM, LAYER_MODE_NO_DEPTH_RANGES");
   // The ranges of shaders/restir/restir_limits.h, which render::RestirOptions::validate checks too.
   using namespace gpu;
   check_float(o.has_confidence_cap(), o.confidence_cap(), RESTIR_MIN_CONFIDENCE_CAP, RESTIR_MAX_CONFIDENCE_CAP, p + "confidence_cap");
@@ -95,6 +99,9 @@ render::RestirOptions restir_options(const v1::RenderOptions& e) {
   r.direct_strata = e.direct_strata();
   r.albedo_strata = e.albedo_strata();
   r.temporal_filter = e.temporal_filter();
+  r.layers = e.layers();
+  r.hole_fill_radius = e.hole_fill_radius();
+  r.layer_mode = layer_mode_name(e.layer_mode());
   return r;
 }
 
@@ -103,6 +110,7 @@ void normalize(v1::RenderOptions& o) {
   if (o.mis() == v1::MIS_UNSPECIFIED) o.set_mis(v1::MIS_PAIRWISE);
   if (o.suffix() == v1::SUFFIX_UNSPECIFIED) o.set_suffix(v1::SUFFIX_AUTO);
   if (o.lod_mapping() == v1::LOD_MAPPING_UNSPECIFIED) o.set_lod_mapping(v1::LOD_MAPPING_AUTO);
+  if (o.layer_mode() == v1::LAYER_MODE_UNSPECIFIED) o.set_layer_mode(v1::LAYER_MODE_ACTIVE);
 }
 
 v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const render::MethodSpec& method, const ServiceLimits& limits,
@@ -114,7 +122,6 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const render
   o.set_mis(v1::MIS_PAIRWISE);
   o.set_suffix(v1::SUFFIX_AUTO);
   o.set_lod_mapping(v1::LOD_MAPPING_AUTO);
-  o.set_layers(0);
   // The ReSTIR defaults are render::RestirOptions' and the method's.
   const render::RestirOptions restir;
   o.set_confidence_cap(restir.moving_cap(method));
@@ -130,6 +137,9 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const render
   o.set_direct_strata(restir.direct_strata);
   o.set_albedo_strata(restir.albedo_strata);
   o.set_temporal_filter(restir.temporal_filter);
+  o.set_layers(restir.layers);
+  o.set_hole_fill_radius(restir.hole_fill_radius);
+  o.set_layer_mode(v1::LAYER_MODE_ACTIVE);
   o.set_splats_per_frame(1);
   o.set_exposure(0.0f);
   o.MergeFrom(requested);  // proto3 optional: only fields that are set overwrite
@@ -145,6 +155,13 @@ std::string suffix_name(v1::Suffix s) {
     case v1::SUFFIX_CACHED: return "cached";
     case v1::SUFFIX_FAIL: return "fail";
     default: return "auto";
+  }
+}
+std::string layer_mode_name(v1::LayerMode m) {
+  switch (m) {
+    case v1::LAYER_MODE_UNIFORM: return "uniform";
+    case v1::LAYER_MODE_NO_DEPTH_RANGES: return "no-depth-ranges";
+    default: return "active";
   }
 }
 std::string lod_mapping_name(v1::LodMapping m) {

@@ -35,6 +35,12 @@
 #define BINDING_SPATIAL_ARGS 28    // VkDispatchIndirectCommand (workgroups) and the list's length
 #define BINDING_SPATIAL_PAIRS 29   // per pixel and pair slot: the paired neighbour's sample shifted into it (PairShift)
 #define BINDING_SWEPT_BOXES 30     // the changed instances' swept boxes (GpuSweptBoxes; with the previous frame)
+// Pixel-layer domains (restir-multilayer; restir/layer_data.h, stage domain_init):
+#define BINDING_DOMAINS 31         // per domain of this frame: depth range, flags, occluder (GpuDomainRange)
+#define BINDING_DOMAINS_PREV 32    // ... and of the previous frame
+#define BINDING_DOMAIN_MARKS 33    // per domain: the occluders of the representative hits propagated into it (uvec2)
+#define BINDING_DOMAIN_LIST 34     // the active deep domains, compacted (domain indices)
+#define BINDING_DOMAIN_ARGS 35     // VkDispatchIndirectCommand (workgroups) and the list's length
 
 // Specialization constants of the passes (constant_id).
 #define SPEC_THIN_LENS 0
@@ -44,5 +50,6 @@
 #define SPEC_SPATIAL_LIST 4     // restir_spatial.comp: this dispatch runs the list
 #define SPEC_SPATIAL_COMPACT 5  // restir_spatial.comp: pixels that draw neighbours at random go to that list
 #define SPEC_SPATIAL_PAIRS 6    // restir_spatial.comp: the first two neighbours are the frame's pair (restir/spatial_pairs.glsl)
+#define SPEC_DOMAIN_LIST 7      // restir_initial.comp, restir_splat_resample.comp: this dispatch runs the active deep domains' list
 
 #endif

@@ -97,7 +97,20 @@ CONST_DEF uint COUNTER_SUFFIX_KEPT = 36u;          // temporal shifts that kept 
 CONST_DEF uint COUNTER_RAYS_REPLAY = 37u;          // rays of suffix replays, of the pass temporal / splat_project
 CONST_DEF uint COUNTER_SPATIAL_FILTERED = 38u;      // spatial: neighbour candidates refused by the surface filter
 CONST_DEF uint COUNTER_RAYS_REPLAY_RESAMPLE = 39u; // rays of suffix replays in splat_resample (reverse splats, backup)
-CONST_DEF uint COUNTER_COUNT = 40u;
+// restir-multilayer (ML Table 1; restir/layer_data.h):
+CONST_DEF uint COUNTER_DOMAINS_ACTIVE = 40u;        // + layer (LAYERS_MAX slots): active domains by layer
+CONST_DEF uint COUNTER_DOMAINS_PROPAGATED = 48u;    // deep domains activated by a propagated representative hit
+CONST_DEF uint COUNTER_DOMAINS_FILLED = 49u;        // deep domains activated by hole filling only
+CONST_DEF uint COUNTER_DOMAINS_UNIFORM = 50u;       // deep domains a uniform k-layer scheme keeps (layers the centre ray found)
+CONST_DEF uint COUNTER_DOMAINS_OCCLUDER = 51u;      // propagated marks refused by the occluder check (ML Sec. 5)
+CONST_DEF uint COUNTER_DISOCCLUDED = 52u;           // front-layer pixels whose centre hit was hidden from the previous camera
+CONST_DEF uint COUNTER_DISOCCLUDED_COVERED = 53u;   // of those, pixels that received a splat from a previous deep domain
+CONST_DEF uint COUNTER_RAYS_DOMAIN_INIT = 54u;      // rays of the domain_init passes
+CONST_DEF uint COUNTER_SPLAT_RANGE_RAYS = 55u;      // closest-hit queries restricted to a depth range (layer assignment)
+CONST_DEF uint COUNTER_SPLAT_STEP_RAYS = 56u;       // stepping rays of the layer assignment without depth ranges
+CONST_DEF uint COUNTER_SPLATS_DEEP = 57u;           // forward splats that landed in a deep domain
+CONST_DEF uint COUNTER_SPLATS_NO_LAYER = 58u;       // forward splats hidden now and in no active domain's depth range
+CONST_DEF uint COUNTER_COUNT = 59u;
 
 STRATA_NAMESPACE_END
 

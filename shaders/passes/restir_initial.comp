@@ -18,6 +18,12 @@
 // reservoir holds is about L_e(x_1) / p-hat(y); no shift can carry the emission part to a pixel that
 // does not see the emitter, while that path shifts fine, and lands on a dim neighbour with the
 // emitter pixel's whole value (a resampling weight up to p-hat_j W_j = L_e).
+//
+// restir-multilayer: a second dispatch (SPEC_DOMAIN_LIST) draws the canonical samples of the active
+// deep domains of the compacted list (ML Sec. 5: "we generate canonical samples for each active
+// domain"). Each estimates I_i of ML Eq. 3 over the domain A_i of Eq. 4: the camera ray's primary
+// vertex is its first hit from x_0 + L_i r within the depth range D_i, and only where something
+// hides it from x_0 (the path's contribution g drops V(x_0, x_1)).
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
 
@@ -30,9 +36,13 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "sampling/light_sampling.glsl"
 #include "restir/restir_limits.h"
 #include "restir/centre_surface.glsl"
+#include "restir/layers.glsl"
 
 
 layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
+layout(set = 0, binding = BINDING_DOMAIN_LIST, std430) readonly buffer DomainList { uint b_domain_list[]; };
+layout(set = 0, binding = BINDING_DOMAIN_ARGS, std430) readonly buffer DomainArgs { GpuDomainArgs b_domain_args; };
+layout(constant_id = SPEC_DOMAIN_LIST) const bool k_domain_list = false;
 
 uint g_rays = 0u;
 GrisState g_state;
@@ -40,6 +50,7 @@ Reservoir g_selected;
 vec3 g_selected_f;
 vec3 g_primary_emission;  // sum over the camera rays of what they see, over N_init
 Rng g_select_rng;
+GpuDomainRange g_range;  // a deep domain's depth range (SPEC_DOMAIN_LIST)
 
 // Streams one candidate: sample y with f(y) and its resampling weight.
 void offer(PathSample y, vec3 f, float w) {
@@ -79,6 +90,12 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
   bool found;
   if (domain_primary) {
     found = primary_hit(ph, h);  // the domain's primary vertex: no ray
+  } else if (k_domain_list) {
+    // A deep domain (ML Eq. 4): the first hit from x_0 + L_i r within D_i, hidden from x_0.
+    g_rays += 2u;
+    found = trace_closest(origin + dir * g_range.range_min, dir, g_range.range_max - g_range.range_min, h) &&
+            !trace_visible(origin, dir, g_range.range_min);
+    if (!found) return;  // no path of this camera ray is in the domain; what it sees is the front layer's
   } else {
     g_rays++;
     found = trace_closest(origin, dir, 1e30, h);
@@ -338,7 +355,43 @@ vec3 stratified_albedo(uvec2 pixel, uint index) {
   return stratified_mean(pixel, index, u_restir.albedo_strata, RESTIR_MAX_INITIAL_CANDIDATES + 64u, true);
 }
 
+// The canonical sample of one deep domain of the compacted list (SPEC_DOMAIN_LIST): the same
+// estimator with its own random streams (keyed by the domain index) and the domain's depth range.
+void deep_domain_main() {
+  uint i = gl_WorkGroupID.x * DOMAIN_LIST_GROUP + gl_LocalInvocationIndex;
+  if (i >= b_domain_args.count) return;
+  uint domain = b_domain_list[i];
+  uvec2 pixel = domain_pixel_of(domain);
+  g_range = b_domains[domain];
+  g_state = gris_begin();
+  g_selected = reservoir_empty();
+  g_selected_f = vec3(0.0);
+  g_primary_emission = vec3(0.0);
+  g_select_rng = rng_init(domain, 0x51EC7u, u_frame.frame_index, u_frame.seed);
+  float n_init = float(u_restir.initial_candidates);
+  for (uint p = 0u; p < u_restir.initial_candidates; ++p)
+    trace_candidates(pixel, rng_key(domain, p, u_frame.frame_index, u_frame.seed), n_init);
+  Reservoir r = g_selected;
+  r.ucw = gris_ucw(g_state);  // RS-main Eq. 5
+  r.p_hat = g_state.selected_p_hat;
+  r.confidence = 1.0;
+  vec3 f = g_selected_f;
+  if (!(r.ucw > 0.0)) {
+    r = reservoir_empty();
+    r.confidence = 1.0;
+    f = vec3(0.0);
+  }
+  store_output(domain, r, f, g_state.estimate);
+  if (g_state.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], g_state.rejected);
+  atomicAdd(b_counters[COUNTER_RAYS_INITIAL], g_rays);
+  atomicAdd(b_counters[COUNTER_PATHS], u_restir.initial_candidates);
+}
+
 void main() {
+  if (k_domain_list) {
+    deep_domain_main();
+    return;
+  }
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
   uint index = pixel_index(pixel);  // the random streams are per pixel

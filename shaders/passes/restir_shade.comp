@@ -28,7 +28,7 @@ void main() {
   uint index = pixel.y * u_frame.width + pixel.x;
   uint domain = domain_index(pixel, 0u, u_frame.width, u_frame.height);  // the front layer is the image
   uint pixels = u_frame.width * u_frame.height;
-  uint domains = pixels;  // one layer
+  uint domains = pixels * u_restir.layers;
   vec3 reflected = b_contribution[contribution_estimate_index(domain, domains, pixels)].rgb;
   vec3 l = reflected + b_contribution[contribution_emission_index(index, domains)].rgb;
   // A non-finite or negative estimate never reaches a pixel; it is counted. (The albedo control

@@ -6,6 +6,9 @@
 // in. The record keeps what the resampling weights of RS-main Eq. 10-11 need. Over an open shutter
 // (motion blur) a thread per previous pixel and time time_partition n (gl_GlobalInvocationID.z) splats
 // into time_partition n (multi-splatting, RS-main Eq. 19); records and targets are per (n, i).
+// restir-multilayer (ML 4.1, 4.2): every previous domain (pixel, layer) splats; a sample whose primary
+// hit is hidden now lands in the deeper domain whose depth range holds it (restir/layers.glsl), or
+// nowhere.
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
 
@@ -24,34 +27,53 @@ layout(set = 0, binding = BINDING_SPLAT_COUNT, std430) buffer Counts { uint b_co
 
 void main() {
   uvec2 prev_pixel = gl_GlobalInvocationID.xy;
-  uint time_partition = gl_GlobalInvocationID.z;
+  uint layer = gl_GlobalInvocationID.z % u_restir.layers;  // z: the previous domain's layer, then the time partition
+  uint time_partition = gl_GlobalInvocationID.z / u_restir.layers;
   if (prev_pixel.x >= u_frame.prev_width || prev_pixel.y >= u_frame.prev_height || time_partition >= splat_partitions()) return;
-  uint i = prev_domain_of(prev_pixel, 0u);
-  uint record = time_partition * u_frame.prev_width * u_frame.prev_height + i;  // records: per partition, per previous domain
+  uint i = prev_domain_of(prev_pixel, layer);
+  uint record = time_partition * prev_domain_count() + i;  // records: per partition, per previous domain
   b_target[record] = SPLAT_NONE;
-  Reservoir x = unpack_reservoir(b_in[i]);
+  Reservoir x = unpack_reservoir(b_in[i]);  // an inactive deep domain holds none (domain_fill.comp)
   if (!reservoir_valid(x)) return;
   bool moved = (u_frame.history_flags & HISTORY_SCENE_MOVED) != 0u;
-  SplatResult s = splat_path(false, x.y, time_partition, moved);
-  atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
-  atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], s.shift.rays);
-  count_suffix(s.shift, COUNTER_RAYS_REPLAY);
-  if (s.shift.reason != SHIFT_OK) {
-    atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + s.shift.reason], 1u);
-    if (!s.projected && s.shift.reason == SHIFT_FAIL_PRIMARY) atomicAdd(b_counters[COUNTER_SPLATS_OFFSCREEN], 1u);
-    if (s.projected && s.shift.reason == SHIFT_FAIL_PRIMARY) atomicAdd(b_counters[COUNTER_SPLATS_OCCLUDED], 1u);
+  ShiftJob job = splat_prepare(false, x.y, time_partition);
+  // The front layer, then (restir-multilayer) the deeper domain whose depth range holds the hidden
+  // primary hit (ML Fig. 3): one shift_path call site.
+  ShiftResult r = shift_none(SHIFT_FAIL_ZERO);
+  float jacobian = 0.0;
+  bool hidden = false;
+  for (uint attempt = 0u; attempt < 2u; ++attempt) {
+    if (attempt == 1u) {
+      hidden = r.reason == SHIFT_FAIL_PRIMARY && hidden_at(r.primary_t, job.distance);
+      if (!splat_deeper(job, r)) break;
+      atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + r.reason], 1u);  // the front-layer attempt
+      atomicAdd(b_counters[COUNTER_SPLAT_RANGE_RAYS], 1u);
+    }
+    r = run_shift(job, moved);
+    jacobian = shift_finish(job, r);
+    atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
+    atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], r.rays);
+    count_suffix(r, COUNTER_RAYS_REPLAY);
+    if (r.reason == SHIFT_OK) break;
+  }
+  if (r.reason != SHIFT_OK) {
+    atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + r.reason], 1u);
+    if (!job.ok && r.reason == SHIFT_FAIL_PRIMARY) atomicAdd(b_counters[COUNTER_SPLATS_OFFSCREEN], 1u);
+    if (job.ok && job.layer == 0u && r.reason == SHIFT_FAIL_PRIMARY) atomicAdd(b_counters[COUNTER_SPLATS_OCCLUDED], 1u);
+    if (multilayer() && hidden && job.layer == 0u) atomicAdd(b_counters[COUNTER_SPLATS_NO_LAYER], 1u);
     return;
   }
+  if (job.layer != 0u) atomicAdd(b_counters[COUNTER_SPLATS_DEEP], 1u);
   Reservoir y = x;  // W, confidence and p-hat_prev of X_i; the sample becomes Y_i
-  y.y = shifted_sample(x.y, s.shift);
-  y.y.jitter = s.jitter;
-  y.y.time = s.time;
-  // X_i's confidence, capped where it lands (restir_splat_resample.comp) with the landing pixel's cap.
+  y.y = shifted_sample(x.y, r);
+  y.y.jitter = job.y.jitter;
+  y.y.time = job.y.time;
+  // X_i's confidence, capped where it lands (restir_splat_resample.comp) with the landing domain's cap.
   SplatRecord rec;
   rec.reservoir = pack_reservoir(y);
-  rec.f_jacobian = vec4(s.shift.f, s.jacobian);
+  rec.f_jacobian = vec4(r.f, jacobian);
   b_splats[record] = rec;
-  uint j = domain_of(s.pixel, 0u);  // the splat's key: the domain it landed in
+  uint j = domain_of(uvec2(job.pixel), job.layer);  // the splat's key: the domain it landed in
   b_target[record] = j;
   atomicAdd(b_count[j], 1u);
 }

@@ -13,6 +13,11 @@
 // that the pixel centre backprojects into, gather-shifted here (T_b). Its MIS (RS-supp Eq. 20-22)
 // adds the backup domain's term to every weight: T_b^-1 of each candidate into b, and the reverse
 // splat of Y^b; confidences are split with alpha = 0.5 (RS-supp 3.2).
+// restir-multilayer (ML 4.1, Sec. 5) resamples every active domain (pixel, layer): the image dispatch
+// the front layer, a second dispatch (SPEC_DOMAIN_LIST) the compacted list of active deep domains.
+// A reverse splat lands in the previous frame's domain that the layer rule of restir/layers.glsl
+// picks there, and the confidence of Eq. 17 is read, at each bilinear tap, from the previous domain
+// whose depth range holds the backprojected representative hit.
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
 
@@ -29,41 +34,55 @@ layout(set = 0, binding = BINDING_SPLATS, std430) readonly buffer Splats { Splat
 layout(set = 0, binding = BINDING_SPLAT_OFFSETS, std430) readonly buffer Offsets { uint b_offsets[]; };
 layout(set = 0, binding = BINDING_SPLAT_LIST, std430) readonly buffer List { uint b_list[]; };
 layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
+layout(set = 0, binding = BINDING_DOMAIN_LIST, std430) readonly buffer DomainList { uint b_domain_list[]; };
+layout(set = 0, binding = BINDING_DOMAIN_ARGS, std430) readonly buffer DomainArgs { GpuDomainArgs b_domain_args; };
+layout(constant_id = SPEC_DOMAIN_LIST) const bool k_domain_list = false;
 
-// The confidence of previous domain q, capped with `cap`: this pixel's (confidence_cap_of its centre
-// hit). Every previous domain's confidence enters this pixel's MIS weights with the same cap, so the
-// weights of each path still sum to one (a confidence weight may depend on the pixel the path is in).
-float prev_confidence(ivec2 q, float cap) {
-  if (q.x < 0 || q.y < 0 || q.x >= int(u_frame.prev_width) || q.y >= int(u_frame.prev_height)) return 0.0;
-  return confidence_capped(unpack_reservoir(b_in[prev_domain_of(uvec2(q), 0u)]).confidence, cap);
+// The confidence of previous domain (q, layer), capped with `cap`: this domain's (confidence_cap_of its
+// representative hit). Every previous domain's confidence enters this domain's MIS weights with the
+// same cap, so the weights of each path still sum to one (a confidence weight may depend on the
+// domain the path is in). Outside the image, or with no layer (LAYERS_MAX), 0.
+float prev_confidence(ivec2 q, uint layer, float cap) {
+  if (q.x < 0 || q.y < 0 || q.x >= int(u_frame.prev_width) || q.y >= int(u_frame.prev_height) || layer >= u_restir.layers) return 0.0;
+  return confidence_capped(unpack_reservoir(b_in[prev_domain_of(uvec2(q), layer)]).confidence, cap);
 }
 
-// The backprojection of this pixel's centre (its primary hit moved back with its object's previous
-// transform) into the previous image; ok = false when the centre sees nothing, changed LoD level, or
-// falls outside. `confidence` is RS-main 4.3's (Eq. 17) bilinear interpolation of the previous
-// confidences there; `backup` the previous pixel it falls in (RS-main 4.2's rounded motion vector).
+// The same at a bilinear tap of Eq. 17 for a point at distance d from the previous camera: with
+// pixel layers, the previous domain whose depth range holds d (ML Sec. 5); else the front layer.
+float prev_confidence_at(ivec2 q, float d, float cap) {
+  if (!multilayer()) return prev_confidence(q, 0u, cap);
+  if (q.x < 0 || q.y < 0 || q.x >= int(u_frame.prev_width) || q.y >= int(u_frame.prev_height)) return 0.0;
+  return prev_confidence(q, layer_by_range(true, uvec2(q), d), cap);
+}
+
+// The backprojection of this domain's representative hit (the pixel-centre hit of its layer, moved
+// back with its object's previous transform) into the previous image; ok = false when it sees
+// nothing, changed LoD level, or falls outside. `confidence` is RS-main 4.3's (Eq. 17) bilinear
+// interpolation of the previous confidences there; `backup` the previous pixel it falls in (RS-main
+// 4.2's rounded motion vector).
 struct Backprojection {
   bool ok;
   uvec2 backup;
   float confidence;
 };
 
-Backprojection backproject_centre(uvec2 pixel, float cap) {
+Backprojection backproject_centre(GpuPrimaryHit centre, float cap) {
   Backprojection bp;
   bp.ok = false;
   bp.backup = uvec2(0u);
   bp.confidence = 0.0;
-  ResolvedSurface before = resolve_surface(true, primary_surface(b_primary[pixel_index(pixel)]));
+  ResolvedSurface before = resolve_surface(true, primary_surface(centre));
   if (before.reason != RESOLVE_OK) return bp;
   vec3 p = before.hit.position;
   vec2 sub;
   if (!project(u_frame.prev_camera, u_frame.prev_width, u_frame.prev_height, p, vec3(0.0), bp.backup, sub)) return bp;
   bp.ok = true;
+  float d = length(p);  // from the previous camera (the origin of its render space)
   vec2 s = vec2(bp.backup) + sub - 0.5;  // continuous coordinates of pixel centres
   ivec2 b = ivec2(floor(s));
   vec2 t = s - vec2(b);
-  bp.confidence = (1.0 - t.x) * (1.0 - t.y) * prev_confidence(b, cap) + t.x * (1.0 - t.y) * prev_confidence(b + ivec2(1, 0), cap) +
-                  (1.0 - t.x) * t.y * prev_confidence(b + ivec2(0, 1), cap) + t.x * t.y * prev_confidence(b + ivec2(1, 1), cap);
+  bp.confidence = (1.0 - t.x) * (1.0 - t.y) * prev_confidence_at(b, d, cap) + t.x * (1.0 - t.y) * prev_confidence_at(b + ivec2(1, 0), d, cap) +
+                  (1.0 - t.x) * t.y * prev_confidence_at(b + ivec2(0, 1), d, cap) + t.x * t.y * prev_confidence_at(b + ivec2(1, 1), d, cap);
   return bp;
 }
 
@@ -88,10 +107,24 @@ void count_shift(ShiftResult r) {
   count_suffix(r, COUNTER_RAYS_REPLAY_RESAMPLE);
 }
 
-void main() {
+// This invocation's domain: the front layer's at its pixel (the image dispatch), or an entry of the
+// active deep domains' list (SPEC_DOMAIN_LIST; one thread per entry, DOMAIN_LIST_GROUP per workgroup).
+bool invocation_domain(out uint domain) {
+  if (k_domain_list) {
+    uint i = gl_WorkGroupID.x * DOMAIN_LIST_GROUP + gl_LocalInvocationIndex;
+    domain = i < b_domain_args.count ? b_domain_list[i] : 0u;
+    return i < b_domain_args.count;
+  }
   uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
-  uint index = domain_of(pixel, 0u);
+  domain = domain_of(pixel, 0u);
+  return pixel.x < u_frame.width && pixel.y < u_frame.height;
+}
+
+void main() {
+  uint index;
+  if (!invocation_domain(index)) return;
+  uvec2 pixel = domain_pixel_of(index);
+  uint layer = domain_layer_of(index);
   Reservoir canonical = unpack_reservoir(b_out[index]);
   vec3 f_canonical = b_contribution[index].rgb;
   float c_star = canonical.confidence;
@@ -101,15 +134,16 @@ void main() {
   // ones by 1 - alpha (alpha = 0.5). The same scale applies to a domain in every weight below, so
   // the weights of every path still sum to one.
   float alpha = with_backup ? 0.5 : 0.0;
-  // The cap of this pixel's domain (RS-main 3.4): still_confidence_cap where the camera and the
-  // instance its centre sees did not move, else confidence_cap (docs/ARCHITECTURE.md, "Confidence cap").
-  float cap = confidence_cap_of(b_primary[pixel_index(pixel)]);
-  Backprojection bp = backproject_centre(pixel, cap);
+  // The cap of this domain (RS-main 3.4): still_confidence_cap where the camera and the instance its
+  // representative hit lies on did not move, else confidence_cap (docs/ARCHITECTURE.md, "Confidence cap").
+  GpuPrimaryHit centre = b_primary[index];  // the visibility buffer is indexed by domain (layer 0: by pixel)
+  float cap = confidence_cap_of(centre);
+  Backprojection bp = backproject_centre(centre, cap);
   bool backup_domain = with_backup && bp.ok;
   Reservoir xb = backup_domain ? unpack_reservoir(b_in[prev_domain_of(bp.backup, 0u)]) : reservoir_empty();
   float c_b = backup_domain ? alpha * confidence_capped(xb.confidence, cap) : 0.0;
 
-  Rng rng = rng_init(pixel_index(pixel), 0x5B1A7u, u_frame.frame_index, u_frame.seed);
+  Rng rng = rng_init(index, 0x5B1A7u, u_frame.frame_index, u_frame.seed);  // per domain (layer 0: the pixel)
   GrisState st = gris_begin();
   Reservoir out_r = canonical;
   vec3 f = f_canonical;
@@ -117,26 +151,33 @@ void main() {
   uint last = b_offsets[index + 1u];
 
   // Every shift is a job of one loop with one shift_path call (lavapipe inlines a traversal per
-  // call site). Jobs: 0 the canonical sample reverse-splatted (Eq. 13/21), 1 the canonical sample
-  // into the backup pixel (Eq. 21), 2 the backup sample into this pixel (Y^b), 3 Y^b reverse-splatted
-  // (Eq. 22); then per splat s, Y_s into the backup pixel (Eq. 20) and its resampling.
+  // call site). Jobs: 0 the canonical sample reverse-splatted (Eq. 13/21) into the previous front
+  // layer, 1 the same into the deeper previous domain whose range holds it when 0 found it hidden
+  // (restir-multilayer), 2 the canonical sample into the backup pixel (Eq. 21), 3 the backup sample
+  // into this pixel (Y^b), 4 Y^b reverse-splatted (Eq. 22); then per splat s, Y_s into the backup
+  // pixel (Eq. 20) and its resampling.
+  const uint first_splat_job = 5u;
   float from_r = 0.0;       // p-hat_prev(T^-1 Y*) |dT^-1/dY*|
   float c_r = 0.0;
+  ShiftJob reverse;         // job 0's, which job 1 retries deeper
+  ShiftResult reverse_result = shift_none(SHIFT_FAIL_ZERO);
   float from_b_star = 0.0;  // p-hat_prev(T_b^-1 Y*) |dT_b^-1/dY*|
   ShiftResult yb = shift_none(SHIFT_FAIL_ZERO);
   float j_b = 0.0;
   float from_r_b = 0.0;     // p-hat_prev(T^-1 Y^b) |dT^-1/dY^b|
   float c_r_b = 0.0;
-  uint jobs = 4u + (last - first);
+  bool from_deep = false;   // a splat from a previous deep domain landed here
+  uint jobs = first_splat_job + (last - first);
   uint record = SPLAT_NONE;
   for (uint job = 0u; job < jobs; ++job) {
-    uint s = job >= 4u ? first + job - 4u : 0u;
+    uint s = job >= first_splat_job ? first + job - first_splat_job : 0u;
     SplatRecord rec;
     Reservoir y_s;
-    if (job >= 4u) {
-      record = next_splat(first, last, record, job == 4u);
+    if (job >= first_splat_job) {
+      record = next_splat(first, last, record, job == first_splat_job);
       rec = b_splats[record];
       y_s = unpack_reservoir(rec.reservoir);
+      from_deep = from_deep || record % prev_domain_count() >= u_frame.prev_width * u_frame.prev_height;
     }
     ShiftJob sj;
     sj.ok = false;
@@ -144,13 +185,20 @@ void main() {
     if (job == 0u) {
       run = reservoir_valid(canonical);
       if (run) sj = splat_prepare(true, canonical.y, 0u);
+      reverse = sj;
     } else if (job == 1u) {
+      run = reverse.ok && splat_deeper(reverse, reverse_result);
+      if (run) {
+        sj = reverse;
+        atomicAdd(b_counters[COUNTER_SPLAT_RANGE_RAYS], 1u);
+      }
+    } else if (job == 2u) {
       run = backup_domain && reservoir_valid(canonical);
       if (run) sj = gather_prepare(true, vec2(bp.backup), canonical.y);
-    } else if (job == 2u) {
+    } else if (job == 3u) {
       run = backup_domain && reservoir_valid(xb);
       if (run) sj = gather_prepare(false, vec2(pixel), xb.y);
-    } else if (job == 3u) {
+    } else if (job == 4u) {
       run = j_b > 0.0;
       PathSample y_b = shifted_sample(xb.y, yb);  // Y^b: the backup sample as it was shifted into this pixel
       if (run) sj = splat_prepare(true, y_b, 0u);
@@ -167,17 +215,20 @@ void main() {
       count_shift(r);
     }
     float from = jac > 0.0 ? p_hat_from(luminance(r.f), jac) : 0.0;
-    if (job == 0u) {
-      from_r = from;
-      if (jac > 0.0) c_r = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel), cap);
-    } else if (job == 1u) {
-      from_b_star = from;
+    if (job <= 1u) {
+      if (job == 0u) reverse_result = r;
+      if (jac > 0.0) {
+        from_r = from;
+        c_r = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel), sj.layer, cap);
+      }
     } else if (job == 2u) {
+      from_b_star = from;
+    } else if (job == 3u) {
       yb = r;
       j_b = jac;
-    } else if (job == 3u) {
+    } else if (job == 4u) {
       from_r_b = from;
-      if (jac > 0.0) c_r_b = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel), cap);
+      if (jac > 0.0) c_r_b = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel), 0u, cap);
       // The canonical sample (RS-main Eq. 12-13; RS-supp Eq. 21) and the backup (RS-supp Eq. 22).
       float m_star = mis_balance_terms(c_star * canonical.p_hat, c_b * from_b_star, c_r * from_r);
       gris_stream_path(st, m_star * canonical.p_hat * canonical.ucw, canonical.p_hat, f_canonical, c_star, 0u, rng_next_float(rng));
@@ -201,9 +252,13 @@ void main() {
       }
     }
   }
+  // ML Table 1's coverage: a disoccluded front-layer pixel (domain_build.comp) that a splat from a
+  // previous deep domain reached.
+  if (multilayer() && layer == 0u && from_deep && (b_domains[index].flags & DOMAIN_DISOCCLUDED) != 0u)
+    atomicAdd(b_counters[COUNTER_DISOCCLUDED_COVERED], 1u);
   if (st.selected != 0u && st.selected != GRIS_NONE) atomicAdd(b_counters[COUNTER_TEMPORAL_SELECTED], 1u);
   if (st.selected == 1u) atomicAdd(b_counters[COUNTER_SPLAT_BACKUP_SELECTED], 1u);
-  if (last == first) atomicAdd(b_counters[COUNTER_TEMPORAL_NO_HISTORY], 1u);  // a hole: no splat landed here
+  if (last == first && layer == 0u) atomicAdd(b_counters[COUNTER_TEMPORAL_NO_HISTORY], 1u);  // a hole: no splat landed here
   atomicAdd(b_counters[COUNTER_SPLATS_LANDED], last - first);
   atomicMax(b_counters[COUNTER_SPLATS_MAX], last - first);
   out_r.p_hat = st.selected_p_hat;

@@ -8,8 +8,10 @@ layout(local_size_x = 256, local_size_y = 1, local_size_z = 1) in;
 
 #include "include/bindings.h"
 #include "include/frame_data.h"
+#include "restir/restir_data.h"
 
 layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
+layout(set = 0, binding = BINDING_RESTIR, std140) uniform Restir { GpuRestirConstants u_restir; };
 layout(set = 0, binding = BINDING_SPLAT_COUNT, std430) readonly buffer Counts { uint b_count[]; };
 layout(set = 0, binding = BINDING_SPLAT_OFFSETS, std430) writeonly buffer Offsets { uint b_offsets[]; };
 
@@ -17,7 +19,7 @@ shared uint s_scan[256];
 
 void main() {
   uint t = gl_LocalInvocationID.x;
-  uint n = u_frame.width * u_frame.height;  // the domain keys of one layer (restir/domain.h)
+  uint n = u_frame.width * u_frame.height * u_restir.layers;  // the domain keys (restir/domain.h)
   uint carry = 0u;
   for (uint base = 0u; base < n; base += 256u) {
     uint c = base + t < n ? b_count[base + t] : 0u;

@@ -1,5 +1,6 @@
 // Domain addressing (docs/ARCHITECTURE.md, "Domains"): a ReSTIR domain is a (pixel, layer) pair
-// (the ML paper's pixel-layer domains; layer 0 is the front layer, the only one so far). Every
+// (the ML paper's pixel-layer domains; layer 0 is the front layer; only restir-multilayer has more:
+// restir/layer_data.h). Every
 // buffer of per-domain data (reservoirs, contributions, splat keys) is indexed by domain_index and
 // by nothing else, so adding layers changes this one function and the buffers' sizes.
 #ifndef STRATA_DOMAIN_H
@@ -13,10 +14,11 @@ INLINE uint domain_index(uvec2 pixel, uint layer, uint width, uint height) {
   return (layer * height + pixel.y) * width + pixel.x;
 }
 
-// The pixel of a layer-0 domain index (the inverse of domain_index for layer 0).
+// The pixel of a layer-0 domain index (the inverse of domain_index for layer 0; for any layer, of the
+// index modulo width * height).
 INLINE uvec2 domain_pixel(uint index, uint width) { return uvec2(index % width, index / width); }
 
-// The contribution buffer, per frame (3 sections; `domains` of them per layer-0 pixel so far):
+// The contribution buffer, per frame (sections of `domains` = pixels x layers or of `pixels`):
 // f(Y) of each domain's reservoir, what each pixel's camera rays see directly, and each domain's
 // estimate sum_i w_i f(Y_i) / p-hat(Y_i) over the candidates of the last pass that resampled it
 // (restir/gris.h, gris_stream_path), which the shade pass adds to the image.

@@ -55,9 +55,18 @@ const uint SUFFIX_REPLAYED = 2u;  // traced again (its rays are in replay_rays)
 // The primary vertex of the target domain of a shift: fixed (PRIMARY_DOMAIN: the domain's
 // visibility-buffer entry in its frame, with its camera sample), or free (the offset path traces
 // the camera ray of the sample's own camera sample).
+// A free primary ray may be restricted to a depth range [t_min, t_max] (a deep pixel-layer domain,
+// ML Eq. 4: its primary vertex is the first hit from L_i r; restir/layers.glsl), and may have to
+// find a given x_1 (a splat: RS-main 4.1.1's visibility of y_1 from y_0): then a ray that finds
+// another surface fails the shift at once (SHIFT_FAIL_PRIMARY, with the distance it found in
+// ShiftResult::primary_t), instead of tracing a path the splat then refuses.
 struct DomainPrimary {
   bool is_fixed;
   GpuPrimaryHit hit;
+  float t_min;       // free: the primary ray starts at origin + t_min dir ...
+  float t_max;       // ... and ends at origin + t_max dir
+  bool check_x1;     // free: the primary ray must hit x1's triangle
+  SurfacePoint x1;
 };
 
 DomainPrimary domain_primary_free() {
@@ -73,6 +82,20 @@ DomainPrimary domain_primary_free() {
   d.hit.jitter = vec2(0.5);
   d.hit.lens = 0u;
   d.hit.time = 0.0;
+  d.t_min = 0.0;
+  d.t_max = 1e30;
+  d.check_x1 = false;
+  d.x1 = surface_none();
+  return d;
+}
+
+// The free primary of a splat of a path whose primary hit is x1, within [t_min, t_max] of its camera ray.
+DomainPrimary domain_primary_splat(SurfacePoint x1, float t_min, float t_max) {
+  DomainPrimary d = domain_primary_free();
+  d.t_min = t_min;
+  d.t_max = t_max;
+  d.check_x1 = true;
+  d.x1 = x1;
   return d;
 }
 
@@ -100,6 +123,7 @@ struct ShiftResult {
   float suffix_density;
   uint suffix;       // SUFFIX_NONE | SUFFIX_KEPT | SUFFIX_REPLAYED
   uint replay_rays;
+  float primary_t;   // a free primary ray's hit distance from the camera (0: none; a check_x1 failure says where)
 };
 
 ShiftResult shift_none(uint reason) {
@@ -118,6 +142,7 @@ ShiftResult shift_none(uint reason) {
   r.suffix_density = 1.0;
   r.suffix = SUFFIX_NONE;
   r.replay_rays = 0u;
+  r.primary_t = 0.0;
   return r;
 }
 
@@ -245,7 +270,14 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
       found = primary_hit(dp.hit, h);  // the domain's primary vertex y_1, loaded by the primary stage
     } else {
       r.rays++;
-      found = trace_closest_in(prev, origin, dir, 1e30, h);
+      float t0 = j == 0u ? dp.t_min : 0.0;  // a deep domain's primary ray starts at L_i (ML Eq. 4)
+      found = trace_closest_in(prev, origin + dir * t0, dir, j == 0u ? dp.t_max - t0 : 1e30, h);
+      if (j == 0u) {
+        h.t += t0;
+        r.primary_t = found ? h.t : 0.0;
+        if (dp.check_x1 && (!found || h.instance != dp.x1.instance || h.geometry != dp.x1.geometry || h.triangle != dp.x1.triangle))
+          return shift_fail(r, SHIFT_FAIL_PRIMARY);
+      }
     }
     if (!found) {
       if (!(path_end && escaped)) return shift_fail(r, j == 0u ? SHIFT_FAIL_PRIMARY : SHIFT_FAIL_REPLAY);

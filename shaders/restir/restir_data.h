@@ -40,7 +40,15 @@ struct GpuRestirConstants {
   uint direct_strata;       // G: what the camera sees directly is estimated with G x G stratified camera samples (0: the N_init candidates' camera rays)
   float still_confidence_cap;  // the cap of a domain where nothing moved (confidence_cap_of, restir_pass.glsl)
   uint albedo_strata;        // G: the reflected light's albedo control variate takes G x G camera samples at albedo edges (0: off)
+  uint layers;               // pixel layers per pixel (restir/layer_data.h; 1 for every single-layer method)
+  uint hole_fill_radius;     // restir-multilayer: deep domains within this many pixels of a propagated one are active too (ML 4.3)
+  uint layer_mode;           // restir-multilayer: LAYER_MODE_* (the method and its ML validation variants)
+  float depth_range_epsilon; // restir-multilayer: a representative hit at t has the depth range [(1-e)t, (1+e)t] (ML Sec. 5)
+  uint pad0;
+  uint pad1;
   uint pad2;
+  uint pad3;
+  uint pad4;
 };
 
 // Why a shift failed; counted per pass (COUNTER_SHIFT_* + reason).
@@ -58,7 +66,10 @@ STRATA_NAMESPACE_END
 
 #ifdef __cplusplus
 #include "include/frame_data.h"
-static_assert(sizeof(strata::gpu::GpuRestirConstants) == 64);
+#include "restir/layer_data.h"
+static_assert(sizeof(strata::gpu::GpuRestirConstants) == 96);
+// The multi-layer counters: one slot per layer.
+static_assert(strata::gpu::COUNTER_DOMAINS_ACTIVE + strata::gpu::LAYERS_MAX <= strata::gpu::COUNTER_DOMAINS_PROPAGATED);
 // The counter slots of shift failures hold one slot per reason: a new reason must not run into the
 // next block of counters (frame_data.h).
 static_assert(strata::gpu::COUNTER_TEMPORAL_FAIL + strata::gpu::SHIFT_REASONS <= strata::gpu::COUNTER_SPATIAL_FAIL);

@@ -20,6 +20,8 @@ CONST_DEF uint RESTIR_SPATIAL_TRIES = 4u;
 // Previous pixels tried, nearest to the backprojected position first, until one's centre surface
 // passes the history filter (restir_temporal.comp): the pixel itself and the rest of its 3 x 3.
 CONST_DEF uint RESTIR_TEMPORAL_TRIES = 9u;
+// restir-multilayer: the hole filling radius (ML 4.3 uses 3; domain_fill.comp reads (2r+1)^2 marks).
+CONST_DEF uint RESTIR_MAX_HOLE_FILL_RADIUS = 8u;
 
 STRATA_NAMESPACE_END
 #endif

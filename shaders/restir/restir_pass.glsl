@@ -24,7 +24,13 @@ bool in_image(ivec2 p) { return p.x >= 0 && p.y >= 0 && p.x < int(u_frame.width)
 // (restir/domain.h): the domain of layer `layer` at a pixel of the current or the previous frame.
 uint domain_of(uvec2 pixel, uint layer) { return domain_index(pixel, layer, u_frame.width, u_frame.height); }
 uint prev_domain_of(uvec2 pixel, uint layer) { return domain_index(pixel, layer, u_frame.prev_width, u_frame.prev_height); }
-uint domain_count() { return u_frame.width * u_frame.height; }  // one layer
+uint domain_count() { return u_frame.width * u_frame.height * u_restir.layers; }  // k layers (1 but for restir-multilayer)
+uint prev_domain_count() { return u_frame.prev_width * u_frame.prev_height * u_restir.layers; }
+// The pixel and layer of domain index d (the inverse of domain_index) in the current or previous frame.
+uvec2 domain_pixel_of(uint d) { return domain_pixel(d % (u_frame.width * u_frame.height), u_frame.width); }
+uint domain_layer_of(uint d) { return d / (u_frame.width * u_frame.height); }
+uvec2 prev_domain_pixel_of(uint d) { return domain_pixel(d % (u_frame.prev_width * u_frame.prev_height), u_frame.prev_width); }
+uint prev_domain_layer_of(uint d) { return d / (u_frame.prev_width * u_frame.prev_height); }
 
 // The contribution buffer (restir/domain.h) holds f(Y) of the reservoir of every domain, then per
 // pixel its estimate of what its camera rays see directly, x_1's emission or the environment

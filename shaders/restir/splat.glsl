@@ -18,35 +18,10 @@
 #define STRATA_SPLAT_GLSL
 
 #include "restir/path_space.glsl"
+#include "restir/layers.glsl"
+#include "restir/projection.glsl"
 #include "restir/reprojection.h"
 
-struct SplatResult {
-  ShiftResult shift;  // the offset path (reason, f, density, x1)
-  uvec2 pixel;        // where it landed
-  vec2 jitter;        // its subpixel position there
-  float time;         // its shutter time there
-  float jacobian;     // |T'(x)| of the whole shift (0 when it failed)
-  bool projected;     // it projected into the target image (else the shift failed off screen or at a grazing view)
-};
-
-// Projects p through the thin lens from lens point o to the image (pixel + subpixel); false when it
-// falls outside. For a pinhole (o = the camera position) this is the perspective projection.
-bool project(GpuCamera cam, uint w, uint h, vec3 p, vec3 o, out uvec2 pixel, out vec2 jitter) {
-  vec3 fwd = cam.forward.xyz;
-  vec3 e = p - o;
-  float along = dot(fwd, e);
-  if (!(along > 0.0)) return false;
-  float focus = cam.lens.x > 0.0 ? cam.lens.y : 1.0;
-  vec3 c = cam.position.xyz;
-  vec3 d = (o - c + e * ((focus - dot(fwd, o - c)) / along)) / focus;  // relative to c, on the plane forward . d = 1
-  float x = dot(d, cam.right.xyz) / dot(cam.right.xyz, cam.right.xyz);
-  float y = dot(d, cam.up.xyz) / dot(cam.up.xyz, cam.up.xyz);
-  vec2 s = vec2((x + 1.0) * 0.5 * float(w), (1.0 - y) * 0.5 * float(h));
-  if (!(s.x >= 0.0 && s.y >= 0.0 && s.x < float(w) && s.y < float(h))) return false;
-  pixel = uvec2(s);
-  jitter = clamp(s - vec2(pixel), vec2(0.0), vec2(0.99999994));
-  return true;
-}
 
 // A shift of either kind, prepared so that the caller runs its single shift_path call: the gather
 // shift (replay with the sample's own subpixel position in a given pixel; the backup of RS-main 4.2
@@ -60,6 +35,12 @@ struct ShiftJob {
   uint reason;
   float camera_ratio;  // splat: |du/dv| of RS-main Eq. 14-16 (reprojection.h); gather: 1
   float time_ratio;    // splat: 1/K forward, K reverse (RS-main 4.4.3); gather: 1 (time kept)
+  // Multi-layer splatting (restir/layers.glsl): the target domain's layer, the depth range its
+  // primary ray is restricted to (0 and 1e30 for the front layer), and x_1's camera distance.
+  uint layer;
+  float t_min;
+  float t_max;
+  float distance;
 };
 
 // K: the time partitions of this frame's shutter (1 when the camera does not move over it), as the
@@ -78,6 +59,10 @@ ShiftJob splat_prepare(bool prev, PathSample y, uint time_partition) {
   job.ok = false;
   job.reason = SHIFT_FAIL_PRIMARY;
   job.camera_ratio = 0.0;
+  job.layer = 0u;
+  job.t_min = 0.0;
+  job.t_max = 1e30;
+  job.distance = 0.0;
   float k = float(splat_partitions());
   float time_to;
   if (!prev) {
@@ -119,8 +104,26 @@ ShiftJob splat_prepare(bool prev, PathSample y, uint time_partition) {
   job.pixel = vec2(pixel);
   job.y.jitter = jitter;
   job.y.time = time_to;
+  job.distance = length(to.position - o_to);
   job.ok = true;
   return job;
+}
+
+// After a splat's front-layer attempt failed because its camera ray found a nearer surface: the
+// deeper domain it may land in instead (ML 4.2, Fig. 3): the active domain of the target pixel whose
+// depth range holds x_1's distance, whose restricted query the next run_shift traces. False when
+// x_1 is not hidden, or no range holds it (the sample is then rejected).
+bool splat_deeper(INOUT(ShiftJob) job, ShiftResult failed) {
+  if (!multilayer() || !job.splat || job.layer != 0u || failed.reason != SHIFT_FAIL_PRIMARY || !hidden_at(failed.primary_t, job.distance))
+    return false;
+  float l;
+  float r;
+  uint layer = deep_layer_by_range(job.prev, uvec2(job.pixel), job.distance, l, r);
+  if (layer == 0u) return false;
+  job.layer = layer;
+  job.t_min = l;
+  job.t_max = r;
+  return true;
 }
 
 // The gather shift of y into `pixel` of the current or previous frame (subpixel position kept).
@@ -134,6 +137,10 @@ ShiftJob gather_prepare(bool prev, vec2 pixel, PathSample y) {
   job.reason = SHIFT_OK;
   job.camera_ratio = 1.0;
   job.time_ratio = 1.0;
+  job.layer = 0u;
+  job.t_min = 0.0;
+  job.t_max = 1e30;
+  job.distance = 0.0;
   return job;
 }
 
@@ -156,21 +163,9 @@ float shift_finish(ShiftJob job, INOUT(ShiftResult) r) {
 // Runs a prepared job (its shift_path call is the caller's one call site when used in a loop).
 ShiftResult run_shift(ShiftJob job, bool suffix_changed) {
   if (!job.ok) return shift_none(job.reason);
-  return shift_path(job.prev, job.pixel, domain_primary_free(), job.y, suffix_changed);  // a splat carries its camera sample
-}
-
-// Splats sample y (of the other frame: the previous one when `prev` is false, and the reverse) into
-// the current (prev = false) or previous frame. suffix_changed: the scene moved between the frames.
-SplatResult splat_path(bool prev, PathSample y, uint time_partition, bool suffix_changed) {
-  ShiftJob job = splat_prepare(prev, y, time_partition);
-  SplatResult r;
-  r.shift = run_shift(job, suffix_changed);
-  r.pixel = uvec2(job.pixel);
-  r.jitter = job.y.jitter;
-  r.time = job.y.time;
-  r.jacobian = shift_finish(job, r.shift);
-  r.projected = job.ok;
-  return r;
+  // A splat carries its camera sample; its primary ray must find x_1 again (within the layer's range).
+  DomainPrimary dp = job.splat ? domain_primary_splat(job.y.x1, job.t_min, job.t_max) : domain_primary_free();
+  return shift_path(job.prev, job.pixel, dp, job.y, suffix_changed);
 }
 
 #endif

@@ -20,7 +20,7 @@ TEST_P(RestirFinite, EveryPixelOfEveryFrameIsFinite) {
   scene::Scene s = scene::builtin_scene(GetParam());
   // restir-di runs with the biased temporal option (the DI tutorial's merge and validation), so
   // both temporal weightings are covered.
-  for (const char* method : {"restir-gather", "restir-di", "restir-splat", "restir-splat-backup"}) {
+  for (const char* method : {"restir-gather", "restir-di", "restir-splat", "restir-splat-backup", "restir-multilayer"}) {
     render::RenderSettings rs;
     rs.restir.unbiased = std::string(method) == "restir-gather";
     rs.width = 16;

@@ -2,6 +2,7 @@
 
 #include "include/frame_data.h"
 #include "render/restir/stages.h"
+#include "restir/reservoir.h"
 #include "restir/restir_data.h"
 
 namespace strata::render {
@@ -25,6 +26,9 @@ RestirMethod::RestirMethod(const SharedResources& shared, const RenderSettings& 
       case StageKind::primary:
         if (state_.primary_stage) stages_.push_back(make_primary_stage(state_));
         break;
+      case StageKind::domain_init:
+        if (state_.multilayer()) stages_.push_back(make_domain_init_stage(state_));
+        break;
       case StageKind::path_trace: break;
     }
   }
@@ -44,14 +48,17 @@ const Stage* RestirMethod::find(StageKind kind) const {
   return nullptr;
 }
 
-// The frame: primary -> initial -> temporal -> spatial -> shade. The stage that writes the frame's final
-// reservoirs into history.current is spatial; without it, the temporal output (work) is copied there.
+// The frame: primary -> [domain_init] -> initial -> temporal -> spatial -> shade. The stage that writes the
+// frame's final reservoirs into history.current is spatial; without it, the temporal output (work) is
+// copied there. Spatial reuse is on the front layer only (ML Sec. 5), so the deep layers' temporal
+// output is copied in either case.
 void RestirMethod::record(VkCommandBuffer cmd, gpu::PassTimer& timer, const MethodFrame& f) {
   const StageFrame frame{cmd, timer, f, state_.shared.scene.parity()};
   const bool spatial = find(StageKind::spatial) != nullptr;
   for (const auto& stage : stages_) {
-    if (stage->kind() == StageKind::shade && !spatial) {
-      VkBufferCopy region{0, 0, state_.work.size()};
+    if (stage->kind() == StageKind::shade && (!spatial || state_.multilayer())) {
+      const VkDeviceSize front = spatial ? sizeof(gpu::PackedReservoir) * state_.pixels : 0;  // spatial wrote layer 0
+      VkBufferCopy region{front, front, state_.work.size() - front};
       vkCmdCopyBuffer(cmd, state_.work.handle(), state_.history.current(frame.parity).handle(), 1, &region);
       gpu::compute_barrier(cmd);
     }
@@ -60,13 +67,15 @@ void RestirMethod::record(VkCommandBuffer cmd, gpu::PassTimer& timer, const Meth
 }
 
 std::vector<PassDecision> RestirMethod::decisions() const {
-  std::vector<PassDecision> d = {{"path_trace", false, std::string("method ") + state_.spec.name + " resamples instead"},
-                                 {"domain_init", false, "single-layer domains: one per pixel"}};
+  std::vector<PassDecision> d = {{"path_trace", false, std::string("method ") + state_.spec.name + " resamples instead"}};
   auto add = [&](StageKind kind, const char* pass, const std::string& absent) {
     if (const Stage* s = find(kind)) d.push_back(s->decision());
     else d.push_back({pass, false, absent});
   };
   add(StageKind::primary, "primary", "no stage reads primary hits (restir.temporal = false, restir.spatial = false)");
+  add(StageKind::domain_init, "domain_init",
+      state_.spec.layers ? "one layer (" + state_.layers_reason + "): single-layer domains, one per pixel"
+                         : "single-layer domains: one per pixel");
   add(StageKind::initial, "initial", "");
   add(state_.spec.temporal, "temporal", "disabled (restir.temporal = false)");
   add(StageKind::spatial, "spatial", "disabled (restir.spatial = false)");

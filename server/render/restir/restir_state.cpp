@@ -3,7 +3,9 @@
 #include <algorithm>
 
 #include "include/bindings.h"
+#include "render/restir/layer_count.h"
 #include "include/scene_data.h"
+#include "restir/layer_data.h"
 #include "restir/primary_data.h"
 #include "restir/reservoir.h"
 #include "restir/restir_data.h"
@@ -11,7 +13,10 @@
 namespace strata::render {
 namespace {
 
-gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec& spec) {
+// ML Sec. 5: "we define the depth range as [(1-e)t, (1+e)t] and use e = 0.01".
+constexpr float k_depth_range_epsilon = 0.01f;
+
+gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec& spec, uint32_t layers) {
   const RestirOptions& o = s.restir;
   gpu::GpuRestirConstants c{};
   c.initial_candidates = o.initial_candidates;
@@ -35,6 +40,12 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
                                          : gpu::SUFFIX_AUTO;
   // ReSTIR DI: camera, x1, light (one bounce).
   c.max_segments = spec.direct_lighting || o.direct_lighting ? std::min<uint32_t>(2, s.max_depth) : s.max_depth;
+  c.layers = layers;
+  c.hole_fill_radius = o.hole_fill_radius;
+  c.layer_mode = o.layer_mode == "uniform"           ? gpu::LAYER_MODE_UNIFORM
+                 : o.layer_mode == "no-depth-ranges" ? gpu::LAYER_MODE_NO_RANGES
+                                                     : gpu::LAYER_MODE_ACTIVE;
+  c.depth_range_epsilon = k_depth_range_epsilon;
   return c;
 }
 
@@ -59,22 +70,40 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
       spec(method),
       width(render_settings.width),
       height(render_settings.height),
-      domains(uint64_t(render_settings.width) * render_settings.height),
+      layers(1),
       primary_stage(render_settings.restir.visibility_buffer(method.fixed_primary)) {
   const auto& ctx = shared.ctx;
+  if (spec.layers) {
+    if (settings.restir.layers > 0) {
+      layers = settings.restir.layers;
+      layers_reason = "requested";
+    } else {
+      const auto& scene = shared.scene.scene();
+      LayerCount measured = measure_layers(shared.ctx, scene, scene.frame_state(0), width, height);
+      layers = measured.layers;
+      layers_reason = measured.reason;
+    }
+  }
+  pixels = uint64_t(width) * height;
+  domains = pixels * layers;
   constants = gpu::Buffer(ctx, sizeof(gpu::GpuRestirConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "restir constants");
-  gpu::GpuRestirConstants c = make_constants(settings, spec);
+  gpu::GpuRestirConstants c = make_constants(settings, spec, layers);
   constants.upload(&c, sizeof c);
   work = device_storage(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (work)");
   history = PingPong(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (history)");
   // Per domain f(Y) of the reservoir there, per pixel what the camera rays see directly, per
   // domain the estimate the shade pass adds (restir/domain.h).
-  contribution = device_storage(ctx, sizeof(glm::vec4) * (2 * domains + 4 * uint64_t(width) * height), "contribution");
+  contribution = device_storage(ctx, sizeof(glm::vec4) * (2 * domains + 4 * pixels), "contribution");
   // The temporal stages, the spatial stage's neighbour filter and, with fixed primary vertices, the
   // initial stage read the visibility buffer. Without any of them there is no primary stage, and
   // the initial pass binds one entry that it never reads (its layout has the binding).
-  const size_t entries = primary_stage ? size_t(width) * height : 1;
+  const size_t entries = primary_stage ? size_t(domains) : 1;
   visibility = PingPong(ctx, sizeof(gpu::GpuPrimaryHit) * entries, "visibility buffer");
+  const size_t layer_entries = multilayer() ? size_t(domains) : 1;
+  domain_ranges = PingPong(ctx, sizeof(gpu::GpuDomainRange) * layer_entries, "domain ranges");
+  domain_marks = device_storage(ctx, sizeof(gpu::GpuDomainMark) * layer_entries, "domain marks");
+  domain_list = device_storage(ctx, sizeof(uint32_t) * layer_entries, "domain list");
+  domain_args = gpu::Buffer(ctx, sizeof(gpu::GpuDomainArgs), gpu::k_indirect_usage, gpu::Memory::Device, "domain list arguments");
 }
 
 std::map<std::string, uint64_t> RestirState::memory_bytes() const {
@@ -82,6 +111,7 @@ std::map<std::string, uint64_t> RestirState::memory_bytes() const {
                                        {"contribution", contribution.size()},
                                        {"frame_constants_and_counters", constants.size()}};
   if (primary_stage) m["visibility"] = visibility.size();
+  if (multilayer()) m["domains"] = domain_ranges.size() + domain_marks.size() + domain_list.size() + domain_args.size();
   return m;
 }
 

@@ -4,7 +4,8 @@
 // history: the final reservoirs, ping-pong, so that the previous frame's stay readable while this
 // frame's are written), the contribution f(Y) of each domain's reservoir, and the visibility
 // buffer of the primary stage (ping-pong too: the gather's biased validation reads the previous one).
-// Every buffer is sized by the domain count: one domain per pixel (layer 0) for now.
+// Every per-domain buffer is sized by the domain count: pixels x layers (restir/domain.h; one layer
+// but for restir-multilayer, whose domain state is `layer_state`).
 #include <cstdint>
 #include <map>
 #include <string>
@@ -25,14 +26,25 @@ struct RestirState {
   const RenderSettings settings;
   const MethodSpec& spec;
   uint32_t width, height;
-  uint64_t domains;           // width * height: one layer (restir/domain.h)
+  uint32_t layers;            // k pixel layers (restir-multilayer; 1 for every other method)
+  std::string layers_reason;  // how k was chosen (the session's `layers` decision)
+  uint64_t pixels;            // width * height
+  uint64_t domains;           // pixels * layers (restir/domain.h)
   bool primary_stage;         // the primary stage runs: fixed primary vertices, or a temporal or spatial stage reads it
 
   gpu::Buffer constants;      // GpuRestirConstants (uniform)
   gpu::Buffer work;           // per domain: canonical, then temporal output
   PingPong history;           // per domain: the frame's final reservoirs
   gpu::Buffer contribution;   // per domain f(Y) of its reservoir, then per pixel the directly seen emission
-  PingPong visibility;        // per pixel: the primary stage's hit (GpuPrimaryHit); one entry when it does not run
+  PingPong visibility;        // per domain: the primary stage's hit (layer 0) and the representative hits of the
+                              // deeper layers (GpuPrimaryHit); one entry when no primary stage runs
+  // Pixel-layer domains (restir/layer_data.h; stage domain_init). Every splat method binds them (one
+  // entry each but for restir-multilayer with k > 1 layers).
+  PingPong domain_ranges;     // per domain: depth range, flags, occluder (GpuDomainRange)
+  gpu::Buffer domain_marks;   // per domain: occluders of the representative hits propagated into it (GpuDomainMark)
+  gpu::Buffer domain_list;    // the active deep domains, compacted
+  gpu::Buffer domain_args;    // GpuDomainArgs: the list dispatch's workgroups and the list's length
+  bool multilayer() const { return layers > 1; }
 
   std::map<std::string, uint64_t> memory_bytes() const;
 };

@@ -6,17 +6,23 @@
 namespace strata::render {
 namespace {
 
+// The canonical samples: the image dispatch (the front layer) and, for restir-multilayer, the same
+// shader over the compacted list of active deep domains (SPEC_DOMAIN_LIST, an indirect dispatch).
 class InitialStage : public Stage {
  public:
   explicit InitialStage(const RestirState& state)
-      : state_(state),
-        pass_(state.shared.ctx, &state.shared.scene, {.lights = true, .history = false}, "restir_initial",
-              restir_resources(state, storage(BINDING_RESERVOIRS_OUT, Access::write, state.work),
-                               {history_current(BINDING_PRIMARY, Access::read, state.visibility)})) {}
+      : state_(state), pass_(state.shared.ctx, &state.shared.scene, {.lights = true, .history = false}, "restir_initial", resources(), spec(false)) {
+    if (state.multilayer())
+      deep_ = std::make_unique<Pass>(state.shared.ctx, &state.shared.scene, SceneUse{.lights = true, .history = false}, "restir_initial",
+                                     resources(), spec(true));
+  }
   StageKind kind() const override { return StageKind::initial; }
   uint32_t timed_passes() const override { return 1; }
   void record(const StageFrame& f) override {
-    timed(f, "initial", [&] { pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height); });
+    timed(f, "initial", [&] {
+      pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height);
+      if (deep_) deep_->dispatch_indirect(f.cmd, f.parity, state_.domain_args);
+    });
   }
   PassDecision decision() const override {
     const RestirOptions& o = state_.settings.restir;
@@ -25,12 +31,24 @@ class InitialStage : public Stage {
     std::string start = state_.spec.fixed_primary ? ", from the pixel's primary hit of the frame" : ", each with its own camera ray";
     return {"initial", true,
             std::to_string(o.initial_candidates) + " candidate path(s), " + std::to_string(o.light_candidates) +
-                " light candidate(s) per vertex, " + paths + start};
+                " light candidate(s) per vertex, " + paths + start +
+                (deep_ ? "; and one canonical sample per active deep domain (ML Eq. 3-4: the first hit within its depth range, hidden from the camera)"
+                       : "")};
   }
 
  private:
+  std::vector<PassResource> resources() const {
+    return restir_resources(state_, storage(BINDING_RESERVOIRS_OUT, Access::write, state_.work),
+                            {history_current(BINDING_PRIMARY, Access::read, state_.visibility),
+                             history_current(BINDING_DOMAINS, Access::read, state_.domain_ranges),
+                             storage(BINDING_DOMAIN_LIST, Access::read, state_.domain_list),
+                             storage(BINDING_DOMAIN_ARGS, Access::read, state_.domain_args)});
+  }
+  static std::vector<gpu::SpecConstant> spec(bool deep) { return {{SPEC_DOMAIN_LIST, deep ? VK_TRUE : VK_FALSE}}; }
+
   const RestirState& state_;
   Pass pass_;
+  std::unique_ptr<Pass> deep_;  // restir-multilayer: the active deep domains' list
 };
 
 }  // namespace

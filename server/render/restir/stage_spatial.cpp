@@ -48,10 +48,10 @@ class SpatialStage : public Stage {
         pairs_(pair_offsets_ > 0),
         compact_(compacts(state.settings.restir)),
         // The list holds one entry per pixel; without compaction it is never written (one entry).
-        list_(device_storage(state.shared.ctx, sizeof(uint32_t) * (compact_ ? state.domains : 1), "spatial list")),
+        list_(device_storage(state.shared.ctx, sizeof(uint32_t) * (compact_ ? state.pixels : 1), "spatial list")),
         args_(state.shared.ctx, sizeof(uint32_t) * 4, gpu::k_indirect_usage, gpu::Memory::Device, "spatial list arguments"),
         // Two records per pixel and pair offset; without pairs it is never read (one record).
-        pair_shifts_(device_storage(state.shared.ctx, sizeof(gpu::PairShift) * (pairs_ ? 2 * pair_offsets_ * state.domains : 1),
+        pair_shifts_(device_storage(state.shared.ctx, sizeof(gpu::PairShift) * (pairs_ ? 2 * pair_offsets_ * state.pixels : 1),
                                     "spatial pair shifts")),
         pass_(state.shared.ctx, &state.shared.scene, SceneUse{}, "restir_spatial", resources(Access::read),
               spatial_spec(false, compact_, pair_offsets_)) {

@@ -8,6 +8,9 @@
 //   splat_resample  per current pixel: GRIS of the canonical sample with the splats that landed
 //                   (and the backup sample, shifted from the backprojected previous pixel)
 // Over an open shutter every previous reservoir splats into K time partitions (RS-main Eq. 19).
+// restir-multilayer (ML 4.1, 4.2): every previous domain (pixel, layer) splats, into the front layer
+// or the deeper domain whose depth range holds it; the counting sort runs over all domains, and a
+// second resampling dispatch runs the compacted list of active deep domains.
 #include "include/bindings.h"
 #include "include/frame_data.h"
 #include "render/frame_constants.h"
@@ -30,27 +33,40 @@ class TemporalSplatStage : public Stage {
     const SceneUse with_history{.lights = true, .history = true};  // lights: the suffix replay's NEE end
     auto out = [&] { return storage(BINDING_RESERVOIRS_OUT, Access::read_write, state.work); };
     auto in = [&] { return history_previous(BINDING_RESERVOIRS_IN, state.history); };
+    // The domains' depth ranges of both frames: a splat's layer (restir/layers.glsl).
+    auto ranges = [&] { return history_current(BINDING_DOMAINS, Access::read, state.domain_ranges); };
+    auto ranges_prev = [&] { return history_previous(BINDING_DOMAINS_PREV, state.domain_ranges); };
     project_ = std::make_unique<Pass>(ctx, scene, with_history, "restir_splat_project",
                                       restir_resources(state, out(),
                                                        {in(), storage(BINDING_SPLATS, Access::write, splats_),
                                                         storage(BINDING_SPLAT_TARGET, Access::write, target_),
-                                                        storage(BINDING_SPLAT_COUNT, Access::read_write, count_)}));
+                                                        storage(BINDING_SPLAT_COUNT, Access::read_write, count_), ranges(),
+                                                        ranges_prev()}));
     scan_ = std::make_unique<Pass>(ctx, nullptr, SceneUse{}, "restir_splat_scan",
                                    std::vector<PassResource>{uniform(BINDING_FRAME, state.shared.constants),
+                                                             uniform(BINDING_RESTIR, state.constants),
                                                              storage(BINDING_SPLAT_COUNT, Access::read, count_),
                                                              storage(BINDING_SPLAT_OFFSETS, Access::write, offsets_)});
     insert_ = std::make_unique<Pass>(ctx, nullptr, SceneUse{}, "restir_splat_insert",
                                      std::vector<PassResource>{uniform(BINDING_FRAME, state.shared.constants),
+                                                               uniform(BINDING_RESTIR, state.constants),
                                                                storage(BINDING_SPLAT_TARGET, Access::read, target_),
                                                                storage(BINDING_SPLAT_COUNT, Access::read_write, count_),
                                                                storage(BINDING_SPLAT_OFFSETS, Access::read, offsets_),
                                                                storage(BINDING_SPLAT_LIST, Access::write, list_)});
-    resample_ = std::make_unique<Pass>(ctx, scene, with_history, "restir_splat_resample",
-                                       restir_resources(state, out(),
-                                                        {in(), storage(BINDING_SPLATS, Access::read, splats_),
-                                                         storage(BINDING_SPLAT_OFFSETS, Access::read, offsets_),
-                                                         storage(BINDING_SPLAT_LIST, Access::read, list_),
-                                                         history_current(BINDING_PRIMARY, Access::read, state.visibility)}));
+    auto resample = [&](bool deep) {
+      return std::make_unique<Pass>(ctx, scene, with_history, "restir_splat_resample",
+                                    restir_resources(state, out(),
+                                                     {in(), storage(BINDING_SPLATS, Access::read, splats_),
+                                                      storage(BINDING_SPLAT_OFFSETS, Access::read, offsets_),
+                                                      storage(BINDING_SPLAT_LIST, Access::read, list_),
+                                                      history_current(BINDING_PRIMARY, Access::read, state.visibility), ranges(),
+                                                      ranges_prev(), storage(BINDING_DOMAIN_LIST, Access::read, state.domain_list),
+                                                      storage(BINDING_DOMAIN_ARGS, Access::read, state.domain_args)}),
+                                    std::vector<gpu::SpecConstant>{{SPEC_DOMAIN_LIST, deep ? VK_TRUE : VK_FALSE}});
+    };
+    resample_ = resample(false);
+    if (state.multilayer()) resample_deep_ = resample(true);
   }
 
   StageKind kind() const override { return StageKind::temporal_splat; }
@@ -65,17 +81,22 @@ class TemporalSplatStage : public Stage {
     partitions_ = time_partitions(f.frame.frame, state_.settings.restir.splats_per_frame);
     if (partitions_ > allocated_partitions_) {
       allocate_records(partitions_);
-      for (Pass* p : {project_.get(), insert_.get(), resample_.get()}) p->rebind();
+      for (Pass* p : {project_.get(), insert_.get(), resample_.get(), resample_deep_.get()})
+        if (p) p->rebind();
     }
     const uint32_t w = state_.width, h = state_.height;
     timed(f, "splat_project", [&] {
       vkCmdFillBuffer(f.cmd, count_.handle(), 0, VK_WHOLE_SIZE, 0);
       gpu::compute_barrier(f.cmd);
-      project_->dispatch_layers(f.cmd, f.parity, w, h, partitions_);  // one layer per time partition
+      // z: each previous domain's layer, per time partition
+      project_->dispatch_layers(f.cmd, f.parity, w, h, state_.layers * partitions_);
     });
     timed(f, "splat_scan", [&] { scan_->dispatch_1d(f.cmd, f.parity, 1); });
-    timed(f, "splat_insert", [&] { insert_->dispatch_layers(f.cmd, f.parity, w, h, partitions_); });
-    timed(f, "splat_resample", [&] { resample_->dispatch_2d(f.cmd, f.parity, w, h); });
+    timed(f, "splat_insert", [&] { insert_->dispatch_layers(f.cmd, f.parity, w, h, state_.layers * partitions_); });
+    timed(f, "splat_resample", [&] {
+      resample_->dispatch_2d(f.cmd, f.parity, w, h);
+      if (resample_deep_) resample_deep_->dispatch_indirect(f.cmd, f.parity, state_.domain_args);
+    });
   }
 
   PassDecision decision() const override {
@@ -106,6 +127,15 @@ class TemporalSplatStage : public Stage {
     // Suffix replay rays per pass (of temporal.replay_rays): forward splats, and reverse splats with the backup.
     s.reuse["splat_project.replay_rays"] = c[COUNTER_RAYS_REPLAY];
     s.reuse["splat_resample.replay_rays"] = c[COUNTER_RAYS_REPLAY_RESAMPLE];
+    if (state_.multilayer()) {
+      // ML Table 1: splats into deep domains, hidden splats no depth range held, the restricted
+      // queries of the layer assignment; disoccluded front-layer pixels a previous deep domain covered.
+      s.reuse["splat.deep"] = c[COUNTER_SPLATS_DEEP];
+      s.reuse["splat.no_layer"] = c[COUNTER_SPLATS_NO_LAYER];
+      s.reuse["splat.range_rays"] = c[COUNTER_SPLAT_RANGE_RAYS];
+      s.reuse["splat.step_rays"] = c[COUNTER_SPLAT_STEP_RAYS];
+      s.reuse["domains.disoccluded_covered"] = c[COUNTER_DISOCCLUDED_COVERED];
+    }
   }
 
  private:
@@ -124,6 +154,7 @@ class TemporalSplatStage : public Stage {
   gpu::Buffer count_, offsets_;
   gpu::Buffer splats_, target_, list_;  // reallocated in place by allocate_records (the passes then rebind)
   std::unique_ptr<Pass> project_, scan_, insert_, resample_;
+  std::unique_ptr<Pass> resample_deep_;  // restir-multilayer: the active deep domains' list
   uint32_t allocated_partitions_ = 0;
   uint32_t partitions_ = 1;
   bool ran_ = false;

@@ -10,6 +10,9 @@ namespace strata::render {
 
 // primary: the visibility buffer (pixel-centre hits) -> visibility.current.
 std::unique_ptr<Stage> make_primary_stage(const RestirState& state);
+// domain_init (restir-multilayer): this frame's pixel-layer domains: propagation, representative
+// hits, depth ranges, hole filling, the compacted list of active deep domains (ML 4.3, Sec. 5).
+std::unique_ptr<Stage> make_domain_init_stage(const RestirState& state);
 // initial: the canonical sample of every domain (restir_initial) -> work.
 std::unique_ptr<Stage> make_initial_stage(const RestirState& state);
 // temporal-gather: history.previous at the backprojected pixel, shifted and resampled with the

@@ -1,0 +1,108 @@
+// Stage `domain_init` (restir-multilayer; ML 4.3, Sec. 5; docs/ARCHITECTURE.md, "Pixel layers"):
+// the pixel-layer domains of this frame, before any sample is drawn:
+//   domain_propagate  per previous domain that propagates: its representative hit moved into this
+//                     frame, its new layer counted along the camera ray, a mark with its occluder
+//   domain_build      per pixel: the representative hits of the deep layers it needs (the centre
+//                     ray walked on), the occluder check, the depth ranges of all its layers
+//   domain_fill       per pixel: hole filling, the compacted list of active deep domains (and the
+//                     indirect dispatch's workgroups), inactive deep reservoirs emptied
+// Reads the previous frame's domain state (domain_ranges.previous, visibility.previous) and writes
+// this frame's (domain_ranges.current, visibility.current's deep entries, the list).
+#include "include/bindings.h"
+#include "include/frame_data.h"
+#include "render/restir/restir_state.h"
+#include "render/restir/stages.h"
+#include "restir/layer_data.h"
+
+namespace strata::render {
+namespace {
+
+class DomainInitStage : public Stage {
+ public:
+  explicit DomainInitStage(const RestirState& state) : state_(state) {
+    const auto& ctx = state.shared.ctx;
+    const GpuScene* scene = &state.shared.scene;
+    auto common = [&] {
+      return std::vector<PassResource>{uniform(BINDING_FRAME, state.shared.constants), uniform(BINDING_RESTIR, state.constants),
+                                       storage(BINDING_COUNTERS, Access::read_write, state.shared.counters)};
+    };
+    auto propagate = common();
+    propagate.push_back(history_previous(BINDING_PRIMARY_PREV, state.visibility));
+    propagate.push_back(history_previous(BINDING_DOMAINS_PREV, state.domain_ranges));
+    propagate.push_back(storage(BINDING_DOMAIN_MARKS, Access::read_write, state.domain_marks));
+    propagate_ = std::make_unique<Pass>(ctx, scene, SceneUse{.lights = false, .history = true}, "domain_propagate", std::move(propagate));
+    auto build = common();
+    build.push_back(history_current(BINDING_PRIMARY, Access::read_write, state.visibility));
+    build.push_back(history_current(BINDING_DOMAINS, Access::write, state.domain_ranges));
+    build.push_back(storage(BINDING_DOMAIN_MARKS, Access::read, state.domain_marks));
+    build_ = std::make_unique<Pass>(ctx, scene, SceneUse{.lights = false, .history = true}, "domain_build", std::move(build));
+    auto fill = common();
+    fill.push_back(storage(BINDING_RESERVOIRS_OUT, Access::write, state.work));
+    fill.push_back(history_current(BINDING_DOMAINS, Access::read_write, state.domain_ranges));
+    fill.push_back(storage(BINDING_DOMAIN_LIST, Access::write, state.domain_list));
+    fill.push_back(storage(BINDING_DOMAIN_ARGS, Access::read_write, state.domain_args));
+    fill_ = std::make_unique<Pass>(ctx, nullptr, SceneUse{}, "domain_fill", std::move(fill));
+  }
+
+  StageKind kind() const override { return StageKind::domain_init; }
+  uint32_t timed_passes() const override { return 1; }
+
+  void record(const StageFrame& f) override {
+    propagated_ = f.frame.history_valid;
+    timed(f, "domain_init", [&] {
+      vkCmdFillBuffer(f.cmd, state_.domain_marks.handle(), 0, VK_WHOLE_SIZE, gpu::OCCLUDER_NONE);  // no marks
+      const gpu::GpuDomainArgs empty{0, 1, 1, 0};  // no workgroups yet; y = z = 1; length 0
+      vkCmdUpdateBuffer(f.cmd, state_.domain_args.handle(), 0, sizeof empty, &empty);
+      gpu::compute_barrier(f.cmd);
+      if (propagated_) {
+        propagate_->dispatch_layers(f.cmd, f.parity, state_.width, state_.height, state_.layers);
+        gpu::compute_barrier(f.cmd);
+      }
+      build_->dispatch_2d(f.cmd, f.parity, state_.width, state_.height);
+      gpu::compute_barrier(f.cmd);
+      fill_->dispatch_2d(f.cmd, f.parity, state_.width, state_.height);
+    });
+  }
+
+  PassDecision decision() const override {
+    const RestirOptions& o = state_.settings.restir;
+    std::string mode = o.layer_mode == "uniform" ? "uniform: every layer of every pixel active (ML Fig. 5 validation)"
+                       : o.layer_mode == "no-depth-ranges"
+                           ? "active domains, layers found by stepping rays (ML Table 1 'w/o ranges')"
+                           : "active domains propagated by representative hits, occluder check, depth ranges e = 0.01";
+    return {"domain_init", true,
+            std::to_string(state_.layers) + " layers (" + state_.layers_reason + "); " + mode +
+                (o.layer_mode == "uniform" ? std::string()
+                                           : "; hole filling radius " + std::to_string(o.hole_fill_radius) + " px") +
+                (propagated_ ? "" : "; no previous frame: front layer only")};
+  }
+
+  void collect(std::span<const uint32_t> c, FrameStats& s) const override {
+    using namespace gpu;
+    // ML Table 1: active domains by layer, deep domains (propagated / filled), what a uniform
+    // scheme keeps, the rays the domains cost.
+    uint64_t deep = 0;
+    for (uint32_t i = 0; i < state_.layers; ++i) {
+      s.reuse["domains.active_layer_" + std::to_string(i)] = c[COUNTER_DOMAINS_ACTIVE + i];
+      if (i > 0) deep += c[COUNTER_DOMAINS_ACTIVE + i];
+    }
+    s.reuse["domains.deep"] = deep;
+    s.reuse["domains.propagated"] = c[COUNTER_DOMAINS_PROPAGATED];
+    s.reuse["domains.filled"] = c[COUNTER_DOMAINS_FILLED];
+    s.reuse["domains.occluder_refused"] = c[COUNTER_DOMAINS_OCCLUDER];
+    s.reuse["domains.uniform_deep"] = c[COUNTER_DOMAINS_UNIFORM];
+    s.reuse["domains.disoccluded"] = c[COUNTER_DISOCCLUDED];  // front-layer hits hidden from the previous camera
+    s.rays_traced["domain_init"] = c[COUNTER_RAYS_DOMAIN_INIT];
+  }
+
+ private:
+  const RestirState& state_;
+  std::unique_ptr<Pass> propagate_, build_, fill_;
+  bool propagated_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> make_domain_init_stage(const RestirState& state) { return std::make_unique<DomainInitStage>(state); }
+
+}  // namespace strata::render

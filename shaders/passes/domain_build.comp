@@ -1,0 +1,171 @@
+#version 460
+// Pass `domain_build` (stage domain_init; ML 4.2, 4.3, Sec. 5): per pixel, the representative hits
+// of its deep layers and the depth ranges of all its layers for this frame.
+//   - How deep to look: the deepest layer that domain_propagate marked here or, for hole filling,
+//     within hole_fill_radius pixels (every layer with layer_mode uniform).
+//   - The representative hits c_{p,i}: the pixel-centre ray (the primary stage's, whose first hit
+//     is layer 0) walked on through its surfaces, front faces counted (restir/layer_data.h); each
+//     is stored as the visibility-buffer entry of its domain, with its surface in this frame.
+//   - The occluder check (ML Sec. 5, footnote 2): a marked deep domain is active when its own
+//     immediate occluder (the instance of the layer in front) is one of the occluders the marks
+//     carried; it then propagates to the next frame. (Hole filling is domain_fill's.)
+//   - Depth ranges [(1-e)t, (1+e)t], where two adjacent ones overlap both clamped to the midpoint.
+// The front layer's disocclusion (ML's disoccluded pixels, Table 1): its representative hit, moved
+// back with its object, was hidden from the previous camera (a closest-hit query in the previous
+// frame's TLAS, as the disocclusion mask of the evaluation tests it: render/disocclusion.h), or fell
+// outside the previous image, or its object changed LoD level.
+// A census of every fourth pixel in each direction walks all k layers, so that the frame reports how
+// many deep domains a uniform k-layer scheme would keep (ML Table 1) without walking every pixel.
+#extension GL_EXT_ray_query : require
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+#define STRATA_HISTORY 1
+#include "include/scene_bridge.glsl"
+#include "restir/restir_pass.glsl"
+#include "restir/layers.glsl"
+#include "restir/centre_surface.glsl"
+
+layout(set = 0, binding = BINDING_PRIMARY, std430) buffer Primary { GpuPrimaryHit b_primary[]; };
+layout(set = 0, binding = BINDING_DOMAIN_MARKS, std430) readonly buffer Marks { GpuDomainMark b_marks[]; };
+
+#include "sampling/warp.h"
+#include "include/camera.glsl"
+
+const uint CENSUS_STRIDE = 4u;  // the uniform census: every 4th pixel in x and y
+
+// Whether the front layer's hit was hidden from the previous camera (or outside its image, or its
+// object switched LoD level): one closest-hit query in the previous frame.
+bool disoccluded(GpuPrimaryHit front, inout uint rays) {
+  if ((u_frame.history_flags & HISTORY_VALID) == 0u) return false;
+  ResolvedSurface before = resolve_surface(true, primary_surface(front));
+  if (before.reason != RESOLVE_OK) return true;
+  vec3 p = before.hit.position;  // in the previous frame's render space: its camera at the origin
+  float dist = length(p);
+  vec3 ndc = camera_ndc(u_frame.prev_camera, p);
+  if (!(ndc.z > 0.0 && abs(ndc.x) <= 1.0 && abs(ndc.y) <= 1.0) || !(dist > 0.0)) return true;
+  RayHit h;
+  rays++;
+  return trace_closest_in(true, vec3(0.0), p / dist, dist * (1.0 + LAYER_OCCLUDER_MARGIN), h) && h.t < dist * (1.0 - LAYER_OCCLUDER_MARGIN);
+}
+
+bool marked(ivec2 q, uint layer) {
+  return in_image(q) && b_marks[domain_of(uvec2(q), layer)].occluder_min != OCCLUDER_NONE;
+}
+
+// The deepest layer this pixel must find: marked here, or (hole filling) within the radius.
+uint deepest_needed(uvec2 pixel) {
+  int r = int(u_restir.hole_fill_radius);
+  for (uint i = u_restir.layers - 1u; i >= 1u; --i) {
+    for (int dy = -r; dy <= r; ++dy)
+      for (int dx = -r; dx <= r; ++dx)
+        if (dx * dx + dy * dy <= r * r && marked(ivec2(pixel) + ivec2(dx, dy), i)) return i;
+  }
+  return 0u;
+}
+
+GpuPrimaryHit entry_of(RayHit h, float t, SurfaceHit s) {
+  GpuPrimaryHit p;
+  p.t = t;
+  p.instance = h.instance;
+  p.geometry = h.geometry;
+  p.triangle = h.triangle;
+  p.bary = h.bary;
+  p.lod = b_instances[h.instance].lod;
+  p.flags = PRIMARY_HIT;
+  p.jitter = vec2(0.5);
+  p.lens = packUnorm2x16(vec2(0.5));
+  p.time = 1.0;
+  p.position_area = vec4(s.position, s.area);
+  p.geo_normal_material = vec4(s.geo_normal, uintBitsToFloat(s.material));
+  p.shading_normal_kind = vec4(s.shading_normal, uintBitsToFloat(surface_kind(b_materials[s.material])));
+  return p;
+}
+
+void main() {
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
+  uint k = u_restir.layers;
+  bool uniform_mode = u_restir.layer_mode == LAYER_MODE_UNIFORM;
+  bool census = uniform_mode || (pixel.x % CENSUS_STRIDE == 0u && pixel.y % CENSUS_STRIDE == 0u);
+  GpuPrimaryHit front = b_primary[domain_of(pixel, 0u)];
+  bool front_hit = (front.flags & PRIMARY_HIT) != 0u;
+  uint needed = front_hit ? (census ? k - 1u : deepest_needed(pixel)) : 0u;
+  if (uniform_mode) needed = front_hit ? k - 1u : 0u;
+  else if (census && front_hit) needed = max(k - 1u, deepest_needed(pixel));
+
+  float t_of[LAYERS_MAX];
+  uint occluder_of[LAYERS_MAX];
+  uint found = front_hit ? 1u : 0u;  // layers with a representative hit (0 .. found-1)
+  t_of[0] = front.t;
+  occluder_of[0] = OCCLUDER_NONE;
+  uint rays = 0u;
+  if (needed > 0u) {
+    vec3 origin;
+    vec3 dir;
+    primary_ray(u_frame.camera, vec2(pixel), vec2(0.5), vec2(0.5), origin, dir);  // the primary stage's centre ray
+    float t0 = step_beyond(front.t);
+    uint last = front.instance;
+    for (uint step = 0u; step < 2u * LAYERS_MAX && found <= needed; ++step) {
+      RayHit h;
+      rays++;
+      if (!trace_closest(origin + dir * t0, dir, 1e30, h)) break;
+      float t = t0 + h.t;
+      SurfaceHit s = load_hit(h);
+      if (dot(s.geo_normal, dir) < 0.0) {  // a front face: the next layer's representative hit
+        b_primary[domain_of(pixel, found)] = entry_of(h, t, s);
+        t_of[found] = t;
+        occluder_of[found] = last;
+        last = h.instance;
+        found++;
+      }
+      t0 = step_beyond(t);
+    }
+  }
+  bool front_disoccluded = front_hit && disoccluded(front, rays);
+  if (front_disoccluded) atomicAdd(b_counters[COUNTER_DISOCCLUDED], 1u);
+  atomicAdd(b_counters[COUNTER_RAYS_DOMAIN_INIT], rays);
+  if (census && found > 1u) atomicAdd(b_counters[COUNTER_DOMAINS_UNIFORM], (found - 1u) * (uniform_mode ? 1u : CENSUS_STRIDE * CENSUS_STRIDE));
+
+  // Depth ranges (ML Sec. 5): [(1-e)t, (1+e)t], overlapping neighbours clamped to their midpoint.
+  float e = u_restir.depth_range_epsilon;
+  float lo[LAYERS_MAX];
+  float hi[LAYERS_MAX];
+  for (uint i = 0u; i < found; ++i) {
+    lo[i] = (1.0 - e) * t_of[i];
+    hi[i] = (1.0 + e) * t_of[i];
+  }
+  for (uint i = 0u; i + 1u < found; ++i) {
+    if (hi[i] > lo[i + 1u]) {
+      float m = 0.5 * (hi[i] + lo[i + 1u]);
+      hi[i] = m;
+      lo[i + 1u] = m;
+    }
+  }
+  for (uint i = 0u; i < k; ++i) {
+    uint d = domain_of(pixel, i);
+    GpuDomainRange r;
+    r.range_min = i < found ? lo[i] : 0.0;
+    r.range_max = i < found ? hi[i] : 0.0;
+    r.occluder = i < found ? occluder_of[i] : OCCLUDER_NONE;
+    r.flags = 0u;
+    if (i < found) {
+      r.flags = DOMAIN_HIT;
+      if (i == 0u || uniform_mode) {
+        r.flags |= DOMAIN_ACTIVE | DOMAIN_PROPAGATES;  // front layer: always; uniform: every layer
+        if (i == 0u && front_disoccluded) r.flags |= DOMAIN_DISOCCLUDED;
+      } else {
+        GpuDomainMark m = b_marks[d];
+        if (m.occluder_min != OCCLUDER_NONE) {
+          // ML Sec. 5: activated only when the propagated hit's occluder is this hit's occluder.
+          if (r.occluder == m.occluder_min || r.occluder == ~m.occluder_max) r.flags |= DOMAIN_ACTIVE | DOMAIN_PROPAGATES;
+          else atomicAdd(b_counters[COUNTER_DOMAINS_OCCLUDER], 1u);
+        }
+      }
+    } else if (i > 0u) {
+      b_primary[d].flags = 0u;  // no representative hit this frame
+    }
+    b_domains[d] = r;
+  }
+}

@@ -1,0 +1,80 @@
+#version 460
+// Pass `domain_fill` (stage domain_init; ML 4.3, Sec. 5): hole filling and compaction.
+//   - A deep domain with a representative hit that no propagation activated is active when a
+//     propagating domain of its layer lies within hole_fill_radius pixels (ML: "we treat neighboring
+//     domains within a fixed radius of the current active domains as active"; they sample but do not
+//     propagate: DOMAIN_FILLED, without DOMAIN_PROPAGATES).
+//   - Every active deep domain is appended to the dense list that the initial and resampling passes
+//     dispatch indirectly, one thread per domain (ML Sec. 5's compaction); the list dispatch's
+//     workgroup count grows with it.
+//   - An inactive deep domain holds no sample: its reservoir is emptied with confidence 0, so that no
+//     splat leaves it and it weighs nothing in a reverse splat's MIS weight next frame.
+// Counts the active domains by layer and how deep ones were activated (ML Table 1).
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+#include "include/bindings.h"
+#include "include/frame_data.h"
+#include "restir/domain.h"
+#include "restir/layer_data.h"
+#include "restir/reservoir.h"
+#include "restir/restir_data.h"
+
+layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
+layout(set = 0, binding = BINDING_RESTIR, std140) uniform Restir { GpuRestirConstants u_restir; };
+layout(set = 0, binding = BINDING_COUNTERS, std430) buffer Counters { uint b_counters[]; };
+layout(set = 0, binding = BINDING_RESERVOIRS_OUT, std430) buffer ReservoirsOut { PackedReservoir b_out[]; };
+layout(set = 0, binding = BINDING_DOMAINS, std430) buffer Domains { GpuDomainRange b_domains[]; };
+layout(set = 0, binding = BINDING_DOMAIN_LIST, std430) writeonly buffer DomainList { uint b_domain_list[]; };
+layout(set = 0, binding = BINDING_DOMAIN_ARGS, std430) buffer DomainArgs { GpuDomainArgs b_domain_args; };
+
+uint domain_at(uvec2 pixel, uint layer) { return domain_index(pixel, layer, u_frame.width, u_frame.height); }
+
+bool propagating_near(uvec2 pixel, uint layer) {
+  int r = int(u_restir.hole_fill_radius);
+  for (int dy = -r; dy <= r; ++dy)
+    for (int dx = -r; dx <= r; ++dx) {
+      ivec2 q = ivec2(pixel) + ivec2(dx, dy);
+      if ((dx == 0 && dy == 0) || dx * dx + dy * dy > r * r || q.x < 0 || q.y < 0 || q.x >= int(u_frame.width) || q.y >= int(u_frame.height))
+        continue;
+      if ((b_domains[domain_at(uvec2(q), layer)].flags & DOMAIN_PROPAGATES) != 0u) return true;
+    }
+  return false;
+}
+
+// No sample (no SAMPLE_VALID, W = 0) and confidence 0: what no pass reads beyond reservoir_valid
+// and the confidence.
+PackedReservoir empty_reservoir() {
+  PackedReservoir p;
+  p.x1 = uvec4(0u);
+  p.xk = uvec4(0u);
+  p.radiance = uvec4(0u);
+  p.weights = uvec4(0u);
+  p.meta = uvec4(0u);
+  p.shift = uvec4(0u);
+  return p;
+}
+
+void main() {
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
+  if ((b_domains[domain_at(pixel, 0u)].flags & DOMAIN_ACTIVE) != 0u) atomicAdd(b_counters[COUNTER_DOMAINS_ACTIVE], 1u);
+  for (uint i = 1u; i < u_restir.layers; ++i) {
+    uint d = domain_at(pixel, i);
+    uint flags = b_domains[d].flags;
+    if ((flags & DOMAIN_HIT) != 0u && (flags & DOMAIN_ACTIVE) == 0u && u_restir.hole_fill_radius > 0u && propagating_near(pixel, i)) {
+      flags |= DOMAIN_ACTIVE | DOMAIN_FILLED;
+      b_domains[d].flags = flags;
+    }
+    if ((flags & DOMAIN_ACTIVE) == 0u) {
+      b_out[d] = empty_reservoir();
+      continue;
+    }
+    atomicAdd(b_counters[COUNTER_DOMAINS_ACTIVE + i], 1u);
+    atomicAdd(b_counters[(flags & DOMAIN_FILLED) != 0u ? COUNTER_DOMAINS_FILLED : COUNTER_DOMAINS_PROPAGATED], 1u);
+    uint slot = atomicAdd(b_domain_args.count, 1u);
+    b_domain_list[slot] = d;
+    atomicMax(b_domain_args.groups_x, slot / DOMAIN_LIST_GROUP + 1u);
+  }
+}

@@ -1,0 +1,77 @@
+#version 460
+// Pass `domain_propagate` (stage domain_init; ML 4.3, Sec. 5): every previous domain (p, i) that
+// propagates (the front layer's, and deep domains activated by propagation, not by hole filling)
+// carries its representative hit c_{p,i} into this frame: T(c_{p,i}), the point kept in object
+// space (the surface resolver), is projected through this frame's camera into pixel p', and its
+// layer i' there is counted along the ray from the camera to it (ML Fig. 2: one closest-hit query
+// per surface in front, front faces counted as restir/layer_data.h defines layers). A deep i' marks
+// domain (p', i') with the instance of T(c)'s immediate occluder, which domain_build compares with
+// the occluder of the domain's own representative hit (ML Sec. 5, footnote 2). A hit that lands on
+// the front layer needs no mark (front domains are always active); one that falls outside the
+// image, behind the camera, on a back face, or deeper than the k layers is dropped. One thread per
+// previous domain.
+#extension GL_EXT_ray_query : require
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+#define STRATA_HISTORY 1
+#include "include/scene_bridge.glsl"
+#include "restir/restir_pass.glsl"
+#include "restir/layers.glsl"
+#include "restir/projection.glsl"
+
+layout(set = 0, binding = BINDING_PRIMARY_PREV, std430) readonly buffer PrimaryPrev { GpuPrimaryHit b_primary_prev[]; };
+layout(set = 0, binding = BINDING_DOMAIN_MARKS, std430) buffer Marks { GpuDomainMark b_marks[]; };
+
+bool same_triangle(RayHit h, SurfacePoint p) { return h.instance == p.instance && h.geometry == p.geometry && h.triangle == p.triangle; }
+
+void main() {
+  uvec2 prev_pixel = gl_GlobalInvocationID.xy;
+  uint layer = gl_GlobalInvocationID.z;
+  if (prev_pixel.x >= u_frame.prev_width || prev_pixel.y >= u_frame.prev_height || layer >= u_restir.layers) return;
+  uint d = prev_domain_of(prev_pixel, layer);
+  if ((b_domains_prev[d].flags & DOMAIN_PROPAGATES) == 0u) return;
+  SurfacePoint c = primary_surface(b_primary_prev[d]);
+  ResolvedSurface moved = resolve_surface(false, c);  // T(c_{p,i})
+  if (moved.reason != RESOLVE_OK) return;
+  vec3 origin = u_frame.camera.position.xyz;  // the lens centre at the frame's instant
+  vec3 e = moved.hit.position - origin;
+  float dist = length(e);
+  uvec2 pixel;
+  vec2 sub;
+  if (!(dist > 0.0) || !project(u_frame.camera, u_frame.width, u_frame.height, moved.hit.position, origin, pixel, sub)) return;
+  vec3 dir = e / dist;
+  if (dot(moved.hit.geo_normal, dir) >= 0.0) return;  // a back face is in no layer
+  // Walk from the camera to T(c): the first surface is layer 0, every front face behind it one more.
+  uint rays = 0u;
+  uint found = LAYERS_MAX;  // T(c)'s layer
+  uint occluder = OCCLUDER_NONE;
+  uint behind = 0u;         // front faces met after the first surface
+  float t0 = 0.0;
+  for (uint step = 0u; step < 2u * LAYERS_MAX + 2u; ++step) {
+    RayHit h;
+    rays++;
+    if (!trace_closest(origin + dir * t0, dir, 1e30, h)) break;
+    float t = t0 + h.t;
+    // T(c) itself (its triangle, or its instance at its distance: a neighbouring triangle at float precision)
+    if (same_triangle(h, c) || (h.instance == c.instance && abs(t - dist) <= dist * LAYER_OCCLUDER_MARGIN)) {
+      found = step == 0u ? 0u : behind + 1u;
+      break;
+    }
+    if (t > dist * (1.0 + LAYER_OCCLUDER_MARGIN)) break;  // passed it: T(c) is not on this ray
+    if (step == 0u) {
+      occluder = h.instance;
+    } else if (dot(load_hit(h).geo_normal, dir) < 0.0) {
+      behind++;
+      occluder = h.instance;
+      if (behind + 1u >= u_restir.layers) break;  // deeper than the k layers
+    }
+    t0 = step_beyond(t);
+  }
+  atomicAdd(b_counters[COUNTER_RAYS_DOMAIN_INIT], rays);
+  if (found == 0u || found >= u_restir.layers) return;
+  uint target = domain_of(pixel, found);
+  atomicMin(b_marks[target].occluder_min, occluder);
+  atomicMin(b_marks[target].occluder_max, ~occluder);  // the greatest occluder, as the least complement
+}
