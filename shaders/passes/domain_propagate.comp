@@ -24,8 +24,6 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = BINDING_PRIMARY_PREV, std430) readonly buffer PrimaryPrev { GpuPrimaryHit b_primary_prev[]; };
 layout(set = 0, binding = BINDING_DOMAIN_MARKS, std430) buffer Marks { GpuDomainMark b_marks[]; };
 
-bool same_triangle(RayHit h, SurfacePoint p) { return h.instance == p.instance && h.geometry == p.geometry && h.triangle == p.triangle; }
-
 void main() {
   uvec2 prev_pixel = gl_GlobalInvocationID.xy;
   uint layer = gl_GlobalInvocationID.z;
@@ -43,33 +41,10 @@ void main() {
   if (!(dist > 0.0) || !project(u_frame.camera, u_frame.width, u_frame.height, moved.hit.position, origin, pixel, sub)) return;
   vec3 dir = e / dist;
   if (dot(moved.hit.geo_normal, dir) >= 0.0) return;  // a back face is in no layer
-  // Walk from the camera to T(c): the first surface is layer 0, every front face behind it one more.
-  uint rays = 0u;
-  uint found = LAYERS_MAX;  // T(c)'s layer
-  uint occluder = OCCLUDER_NONE;
-  uint behind = 0u;         // front faces met after the first surface
-  float t0 = 0.0;
-  for (uint step = 0u; step < 2u * LAYERS_MAX + 2u; ++step) {
-    RayHit h;
-    rays++;
-    if (!trace_closest(origin + dir * t0, dir, 1e30, h)) break;
-    float t = t0 + h.t;
-    // T(c) itself (its triangle, or its instance at its distance: a neighbouring triangle at float precision)
-    if (same_triangle(h, c) || (h.instance == c.instance && abs(t - dist) <= dist * LAYER_OCCLUDER_MARGIN)) {
-      found = step == 0u ? 0u : behind + 1u;
-      break;
-    }
-    if (t > dist * (1.0 + LAYER_OCCLUDER_MARGIN)) break;  // passed it: T(c) is not on this ray
-    if (step == 0u) {
-      occluder = h.instance;
-    } else if (dot(load_hit(h).geo_normal, dir) < 0.0) {
-      behind++;
-      occluder = h.instance;
-      if (behind + 1u >= u_restir.layers) break;  // deeper than the k layers
-    }
-    t0 = step_beyond(t);
-  }
-  atomicAdd(b_counters[COUNTER_RAYS_DOMAIN_INIT], rays);
+  LayerWalk w = walk_to_point(false, origin, dir, c, dist);  // ML Fig. 2
+  atomicAdd(b_counters[COUNTER_RAYS_DOMAIN_INIT], w.rays);
+  uint found = w.layer;
+  uint occluder = w.occluder;
   if (found == 0u || found >= u_restir.layers) return;
   uint target = domain_of(pixel, found);
   atomicMin(b_marks[target].occluder_min, occluder);

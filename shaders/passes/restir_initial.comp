@@ -51,6 +51,7 @@ vec3 g_selected_f;
 vec3 g_primary_emission;  // sum over the camera rays of what they see, over N_init
 Rng g_select_rng;
 GpuDomainRange g_range;  // a deep domain's depth range (SPEC_DOMAIN_LIST)
+uint g_layer;            // and its layer
 
 // Streams one candidate: sample y with f(y) and its resampling weight.
 void offer(PathSample y, vec3 f, float w) {
@@ -90,6 +91,9 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
   bool found;
   if (domain_primary) {
     found = primary_hit(ph, h);  // the domain's primary vertex: no ray
+  } else if (k_domain_list && k_layer_stepping) {
+    found = walk_to_layer(origin, dir, g_layer, h, g_rays);  // a deep domain by rank (ML Eq. 3)
+    if (!found) return;
   } else if (k_domain_list) {
     // A deep domain (ML Eq. 4): the first hit from x_0 + L_i r within D_i, hidden from x_0.
     g_rays += 2u;
@@ -363,6 +367,7 @@ void deep_domain_main() {
   uint domain = b_domain_list[i];
   uvec2 pixel = domain_pixel_of(domain);
   g_range = b_domains[domain];
+  g_layer = domain_layer_of(domain);
   g_state = gris_begin();
   g_selected = reservoir_empty();
   g_selected_f = vec3(0.0);

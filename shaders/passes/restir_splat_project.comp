@@ -47,7 +47,7 @@ void main() {
       hidden = r.reason == SHIFT_FAIL_PRIMARY && hidden_at(r.primary_t, job.distance);
       if (!splat_deeper(job, r)) break;
       atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + r.reason], 1u);  // the front-layer attempt
-      atomicAdd(b_counters[COUNTER_SPLAT_RANGE_RAYS], 1u);
+      atomicAdd(b_counters[k_layer_stepping ? COUNTER_SPLAT_STEP_RAYS : COUNTER_SPLAT_RANGE_RAYS], 1u);  // the query after the layer test
     }
     r = run_shift(job, moved);
     jacobian = shift_finish(job, r);

@@ -190,7 +190,7 @@ void main() {
       run = reverse.ok && splat_deeper(reverse, reverse_result);
       if (run) {
         sj = reverse;
-        atomicAdd(b_counters[COUNTER_SPLAT_RANGE_RAYS], 1u);
+        atomicAdd(b_counters[k_layer_stepping ? COUNTER_SPLAT_STEP_RAYS : COUNTER_SPLAT_RANGE_RAYS], 1u);  // the query after the layer test
       }
     } else if (job == 2u) {
       run = backup_domain && reservoir_valid(canonical);

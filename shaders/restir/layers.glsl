@@ -17,6 +17,10 @@ layout(set = 0, binding = BINDING_DOMAINS, std430) buffer Domains { GpuDomainRan
 layout(set = 0, binding = BINDING_DOMAINS_PREV, std430) readonly buffer DomainsPrev { GpuDomainRange b_domains_prev[]; };
 #endif
 
+// layer_mode uniform and no-depth-ranges: a deep domain is A_i = {x | rank(x) = i} (ML Eq. 3) and a
+// splat finds its layer by walking the camera ray (ML Fig. 2) instead of one restricted query.
+layout(constant_id = SPEC_LAYER_STEPPING) const bool k_layer_stepping = false;
+
 // A hit this much nearer than x (relative to x's distance) hides x; closer than that it is x's own
 // surface found at float precision.
 const float LAYER_OCCLUDER_MARGIN = 1e-3;
@@ -65,5 +69,67 @@ bool hidden_at(float primary_t, float d) { return primary_t > 0.0 && primary_t <
 
 // Where a walk along a ray continues after a hit at distance t: just beyond it.
 float step_beyond(float t) { return t + max(t * 1e-4, 1e-5); }
+
+// Layers by rank (the ML paper's original A_i = {x | rank(x) = i}, Eq. 3; layer_mode uniform and
+// no-depth-ranges, and the propagation of representative hits): the ray from `origin` along `dir`
+// is walked through its surfaces with closest-hit queries (ML Fig. 2). The first surface is layer
+// 0, every front face behind it one layer deeper (restir/layer_data.h).
+struct LayerWalk {
+  uint layer;     // the target's layer; LAYERS_MAX when the walk did not reach it (or it is deeper than the k layers)
+  uint occluder;  // the instance of the layer in front of it (OCCLUDER_NONE for layer 0)
+  float t_start;  // where a query that must find the target first may start: just beyond the surface before it
+  uint rays;
+};
+
+bool same_triangle(RayHit h, SurfacePoint p) { return h.instance == p.instance && h.geometry == p.geometry && h.triangle == p.triangle; }
+
+// The layer of the point `target` at distance `dist` along the ray, in the current or previous frame.
+// The target is recognised by its triangle, or by its instance at its distance (a neighbouring
+// triangle of the same surface found at float precision).
+LayerWalk walk_to_point(bool prev, vec3 origin, vec3 dir, SurfacePoint target, float dist) {
+  LayerWalk w;
+  w.layer = LAYERS_MAX;
+  w.occluder = OCCLUDER_NONE;
+  w.t_start = 0.0;
+  w.rays = 0u;
+  uint behind = 0u;  // front faces met after the first surface
+  float t0 = 0.0;
+  for (uint step = 0u; step < 2u * LAYERS_MAX + 2u; ++step) {
+    RayHit h;
+    w.rays++;
+    if (!trace_closest_in(prev, origin + dir * t0, dir, 1e30, h)) break;
+    float t = t0 + h.t;
+    if (same_triangle(h, target) || (h.instance == target.instance && abs(t - dist) <= dist * LAYER_OCCLUDER_MARGIN)) {
+      w.layer = step == 0u ? 0u : behind + 1u;
+      w.t_start = t0;
+      break;
+    }
+    if (t > dist * (1.0 + LAYER_OCCLUDER_MARGIN)) break;  // passed it: the target is not on this ray
+    if (step == 0u) {
+      w.occluder = h.instance;
+    } else if (dot(load_hit_in(prev, h).geo_normal, dir) < 0.0) {
+      behind++;
+      w.occluder = h.instance;
+      if (behind + 1u >= u_restir.layers) break;  // deeper than the k layers
+    }
+    t0 = step_beyond(t);
+  }
+  return w;
+}
+
+// The surface of layer `layer` >= 1 along the ray, as `hit` with t from `origin` (a deep domain's
+// primary vertex by rank); false when the ray has fewer layers.
+bool walk_to_layer(vec3 origin, vec3 dir, uint layer, out RayHit hit, inout uint rays) {
+  uint behind = 0u;  // front faces met after the first surface
+  float t0 = 0.0;
+  for (uint step = 0u; step < 2u * LAYERS_MAX + 2u; ++step) {
+    rays++;
+    if (!trace_closest(origin + dir * t0, dir, 1e30, hit)) return false;
+    hit.t += t0;
+    if (step > 0u && dot(load_hit(hit).geo_normal, dir) < 0.0 && ++behind == layer) return true;
+    t0 = step_beyond(hit.t);
+  }
+  return false;
+}
 
 #endif

@@ -41,6 +41,8 @@ struct ShiftJob {
   float t_min;
   float t_max;
   float distance;
+  vec3 ray_origin;     // the splat's camera ray in the target frame: the lens point
+  vec3 ray_dir;        // towards y_1
 };
 
 // K: the time partitions of this frame's shutter (1 when the camera does not move over it), as the
@@ -63,6 +65,8 @@ ShiftJob splat_prepare(bool prev, PathSample y, uint time_partition) {
   job.t_min = 0.0;
   job.t_max = 1e30;
   job.distance = 0.0;
+  job.ray_origin = vec3(0.0);
+  job.ray_dir = vec3(0.0, 0.0, 1.0);
   float k = float(splat_partitions());
   float time_to;
   if (!prev) {
@@ -105,6 +109,8 @@ ShiftJob splat_prepare(bool prev, PathSample y, uint time_partition) {
   job.y.jitter = jitter;
   job.y.time = time_to;
   job.distance = length(to.position - o_to);
+  job.ray_origin = o_to;
+  job.ray_dir = job.distance > 0.0 ? (to.position - o_to) / job.distance : vec3(0.0, 0.0, 1.0);
   job.ok = true;
   return job;
 }
@@ -112,10 +118,22 @@ ShiftJob splat_prepare(bool prev, PathSample y, uint time_partition) {
 // After a splat's front-layer attempt failed because its camera ray found a nearer surface: the
 // deeper domain it may land in instead (ML 4.2, Fig. 3): the active domain of the target pixel whose
 // depth range holds x_1's distance, whose restricted query the next run_shift traces. False when
-// x_1 is not hidden, or no range holds it (the sample is then rejected).
+// x_1 is not hidden, or no range holds it (the sample is then rejected). With layers by rank
+// (k_layer_stepping) the camera ray is walked to x_1 instead (ML Fig. 2), and the next query starts
+// just beyond the surface in front of it.
 bool splat_deeper(INOUT(ShiftJob) job, ShiftResult failed) {
   if (!multilayer() || !job.splat || job.layer != 0u || failed.reason != SHIFT_FAIL_PRIMARY || !hidden_at(failed.primary_t, job.distance))
     return false;
+  if (k_layer_stepping) {
+    LayerWalk w = walk_to_point(job.prev, job.ray_origin, job.ray_dir, job.y.x1, job.distance);
+    atomicAdd(b_counters[COUNTER_SPLAT_STEP_RAYS], w.rays);
+    if (w.layer == 0u || w.layer >= u_restir.layers) return false;
+    if ((domain_range_in(job.prev, domain_in(job.prev, uvec2(job.pixel), w.layer)).flags & DOMAIN_ACTIVE) == 0u) return false;
+    job.layer = w.layer;
+    job.t_min = w.t_start;
+    job.t_max = 1e30;
+    return true;
+  }
   float l;
   float r;
   uint layer = deep_layer_by_range(job.prev, uvec2(job.pixel), job.distance, l, r);
@@ -141,6 +159,8 @@ ShiftJob gather_prepare(bool prev, vec2 pixel, PathSample y) {
   job.t_min = 0.0;
   job.t_max = 1e30;
   job.distance = 0.0;
+  job.ray_origin = vec3(0.0);
+  job.ray_dir = vec3(0.0, 0.0, 1.0);
   return job;
 }
 

@@ -45,6 +45,8 @@ struct RestirState {
   gpu::Buffer domain_list;    // the active deep domains, compacted
   gpu::Buffer domain_args;    // GpuDomainArgs: the list dispatch's workgroups and the list's length
   bool multilayer() const { return layers > 1; }
+  // layer_mode uniform / no-depth-ranges: deep domains by rank, a splat's layer by walking its camera ray.
+  bool layer_stepping() const { return multilayer() && settings.restir.layer_mode != "active"; }
 
   std::map<std::string, uint64_t> memory_bytes() const;
 };

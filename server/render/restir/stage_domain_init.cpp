@@ -48,7 +48,8 @@ class DomainInitStage : public Stage {
   uint32_t timed_passes() const override { return 1; }
 
   void record(const StageFrame& f) override {
-    propagated_ = f.frame.history_valid;
+    // layer_mode uniform keeps every layer active: nothing to propagate.
+    propagated_ = f.frame.history_valid && state_.settings.restir.layer_mode != "uniform";
     timed(f, "domain_init", [&] {
       vkCmdFillBuffer(f.cmd, state_.domain_marks.handle(), 0, VK_WHOLE_SIZE, gpu::OCCLUDER_NONE);  // no marks
       const gpu::GpuDomainArgs empty{0, 1, 1, 0};  // no workgroups yet; y = z = 1; length 0
@@ -74,7 +75,7 @@ class DomainInitStage : public Stage {
             std::to_string(state_.layers) + " layers (" + state_.layers_reason + "); " + mode +
                 (o.layer_mode == "uniform" ? std::string()
                                            : "; hole filling radius " + std::to_string(o.hole_fill_radius) + " px") +
-                (propagated_ ? "" : "; no previous frame: front layer only")};
+                (propagated_ || o.layer_mode == "uniform" ? "" : "; no previous frame: front layer only")};
   }
 
   void collect(std::span<const uint32_t> c, FrameStats& s) const override {

@@ -44,7 +44,9 @@ class InitialStage : public Stage {
                              storage(BINDING_DOMAIN_LIST, Access::read, state_.domain_list),
                              storage(BINDING_DOMAIN_ARGS, Access::read, state_.domain_args)});
   }
-  static std::vector<gpu::SpecConstant> spec(bool deep) { return {{SPEC_DOMAIN_LIST, deep ? VK_TRUE : VK_FALSE}}; }
+  std::vector<gpu::SpecConstant> spec(bool deep) const {
+    return {{SPEC_DOMAIN_LIST, deep ? VK_TRUE : VK_FALSE}, {SPEC_LAYER_STEPPING, state_.layer_stepping() ? VK_TRUE : VK_FALSE}};
+  }
 
   const RestirState& state_;
   Pass pass_;

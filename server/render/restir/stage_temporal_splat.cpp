@@ -36,12 +36,14 @@ class TemporalSplatStage : public Stage {
     // The domains' depth ranges of both frames: a splat's layer (restir/layers.glsl).
     auto ranges = [&] { return history_current(BINDING_DOMAINS, Access::read, state.domain_ranges); };
     auto ranges_prev = [&] { return history_previous(BINDING_DOMAINS_PREV, state.domain_ranges); };
+    const uint32_t stepping = state.layer_stepping() ? VK_TRUE : VK_FALSE;  // layers by rank (restir/layers.glsl)
     project_ = std::make_unique<Pass>(ctx, scene, with_history, "restir_splat_project",
                                       restir_resources(state, out(),
                                                        {in(), storage(BINDING_SPLATS, Access::write, splats_),
                                                         storage(BINDING_SPLAT_TARGET, Access::write, target_),
                                                         storage(BINDING_SPLAT_COUNT, Access::read_write, count_), ranges(),
-                                                        ranges_prev()}));
+                                                        ranges_prev()}),
+                                      std::vector<gpu::SpecConstant>{{SPEC_LAYER_STEPPING, stepping}});
     scan_ = std::make_unique<Pass>(ctx, nullptr, SceneUse{}, "restir_splat_scan",
                                    std::vector<PassResource>{uniform(BINDING_FRAME, state.shared.constants),
                                                              uniform(BINDING_RESTIR, state.constants),
@@ -63,7 +65,7 @@ class TemporalSplatStage : public Stage {
                                                       history_current(BINDING_PRIMARY, Access::read, state.visibility), ranges(),
                                                       ranges_prev(), storage(BINDING_DOMAIN_LIST, Access::read, state.domain_list),
                                                       storage(BINDING_DOMAIN_ARGS, Access::read, state.domain_args)}),
-                                    std::vector<gpu::SpecConstant>{{SPEC_DOMAIN_LIST, deep ? VK_TRUE : VK_FALSE}});
+                                    std::vector<gpu::SpecConstant>{{SPEC_DOMAIN_LIST, deep ? VK_TRUE : VK_FALSE}, {SPEC_LAYER_STEPPING, stepping}});
     };
     resample_ = resample(false);
     if (state.multilayer()) resample_deep_ = resample(true);
