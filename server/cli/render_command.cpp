@@ -118,6 +118,9 @@ Runner add_render_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--layer-mode", r.layer_mode, "restir-multilayer: active | uniform | no-depth-ranges (ML validation variants)")
       ->capture_default_str();
+  cmd->add_option("--view-layer", r.view_layer,
+                  "restir-multilayer: write layer i's domain estimates instead of the image (0: the image; 0 where inactive)")
+      ->capture_default_str();
   cmd->add_flag("!--no-temporal-filter", r.temporal_filter, "ReSTIR gather: history from any previous pixel (no surface test)");
   cmd->add_flag("!--no-temporal", r.temporal, "ReSTIR: no temporal reuse");
   cmd->add_flag("!--no-spatial", r.spatial, "ReSTIR: no spatial reuse");

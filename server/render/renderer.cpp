@@ -87,6 +87,7 @@ void RestirOptions::validate() const {
           "restir.hole_fill_radius = " + std::to_string(hole_fill_radius) + " is outside " + range(0u, RESTIR_MAX_HOLE_FILL_RADIUS));
   require(layer_mode == "active" || layer_mode == "uniform" || layer_mode == "no-depth-ranges",
           "restir.layer_mode = '" + layer_mode + "' is not one of: active, uniform, no-depth-ranges");
+  require(view_layer < LAYERS_MAX, "restir.view_layer = " + std::to_string(view_layer) + " is outside " + range(0u, LAYERS_MAX - 1));
 }
 
 Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSettings settings)

@@ -69,6 +69,10 @@ struct RestirOptions {
   uint32_t layers = 0;
   uint32_t hole_fill_radius = 3;
   std::string layer_mode = "active";
+  // restir-multilayer: 0 shades the image; i >= 1 writes instead each pixel's layer-i domain
+  // estimate (ML Eq. 3: the radiance its deep surface sends to the camera as if nothing hid it;
+  // 0 where that domain is inactive). For tests and for looking at a layer.
+  uint32_t view_layer = 0;
   float moving_cap(const MethodSpec& method) const { return confidence_cap > 0.0f ? confidence_cap : method.confidence_cap; }
   float still_cap(const MethodSpec& method) const {
     return still_confidence_cap > 0.0f ? still_confidence_cap : moving_cap(method);

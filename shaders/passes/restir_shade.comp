@@ -12,6 +12,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "include/bindings.h"
 #include "include/frame_data.h"
 #include "restir/domain.h"
+#include "restir/layer_data.h"
 #include "restir/restir_data.h"
 
 const float CV_HISTORY_FRAMES = 8.0;
@@ -21,6 +22,15 @@ layout(set = 0, binding = BINDING_COUNTERS, std430) buffer Counters { uint b_cou
 layout(set = 0, binding = BINDING_CONTRIBUTION, std430) buffer Contribution { vec4 b_contribution[]; };
 layout(set = 0, binding = BINDING_RESTIR, std140) uniform Restir { GpuRestirConstants u_restir; };
 layout(set = 0, binding = BINDING_ACCUM, std430) buffer Accum { vec4 b_accum[]; };
+layout(set = 0, binding = BINDING_DOMAINS, std430) readonly buffer Domains { GpuDomainRange b_domains[]; };
+
+// view_layer i >= 1: the estimate of the pixel's layer-i domain, I_i of ML Eq. 3 (its surface's
+// radiance towards the camera with the camera's visibility left out), 0 where the domain is inactive.
+vec3 layer_view(uvec2 pixel, uint pixels, uint domains) {
+  uint domain = domain_index(pixel, u_restir.view_layer, u_frame.width, u_frame.height);
+  if ((b_domains[domain].flags & DOMAIN_ACTIVE) == 0u) return vec3(0.0);
+  return b_contribution[contribution_estimate_index(domain, domains, pixels)].rgb;
+}
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
@@ -29,6 +39,15 @@ void main() {
   uint domain = domain_index(pixel, 0u, u_frame.width, u_frame.height);  // the front layer is the image
   uint pixels = u_frame.width * u_frame.height;
   uint domains = pixels * u_restir.layers;
+  if (u_restir.view_layer > 0u) {
+    vec3 l = layer_view(pixel, pixels, domains);
+    if (any(isnan(l)) || any(isinf(l)) || any(lessThan(l, vec3(0.0)))) {
+      atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], 1u);
+      l = vec3(0.0);
+    }
+    b_accum[index] += vec4(l, 1.0);
+    return;
+  }
   vec3 reflected = b_contribution[contribution_estimate_index(domain, domains, pixels)].rgb;
   vec3 l = reflected + b_contribution[contribution_emission_index(index, domains)].rgb;
   // A non-finite or negative estimate never reaches a pixel; it is counted. (The albedo control

@@ -254,8 +254,10 @@ void main() {
   }
   // ML Table 1's coverage: a disoccluded front-layer pixel (domain_build.comp) that a splat from a
   // previous deep domain reached.
-  if (multilayer() && layer == 0u && from_deep && (b_domains[index].flags & DOMAIN_DISOCCLUDED) != 0u)
+  if (multilayer() && layer == 0u && from_deep && (b_domains[index].flags & DOMAIN_DISOCCLUDED) != 0u) {
     atomicAdd(b_counters[COUNTER_DISOCCLUDED_COVERED], 1u);
+    atomicOr(b_domains[index].flags, DOMAIN_COVERED);  // the domain map's "covered" (layer_map.cpp)
+  }
   if (st.selected != 0u && st.selected != GRIS_NONE) atomicAdd(b_counters[COUNTER_TEMPORAL_SELECTED], 1u);
   if (st.selected == 1u) atomicAdd(b_counters[COUNTER_SPLAT_BACKUP_SELECTED], 1u);
   if (last == first && layer == 0u) atomicAdd(b_counters[COUNTER_TEMPORAL_NO_HISTORY], 1u);  // a hole: no splat landed here

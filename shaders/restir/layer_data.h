@@ -24,6 +24,7 @@ CONST_DEF uint DOMAIN_PROPAGATES = 4u; // activated by propagation (or the front
                                        // activates next frame's domains (ML 4.3); hole-filled ones do not
 CONST_DEF uint DOMAIN_FILLED = 8u;     // active by hole filling only (ML 4.3: sampling only)
 CONST_DEF uint DOMAIN_DISOCCLUDED = 16u;  // front layer: its representative hit was hidden from the previous camera
+CONST_DEF uint DOMAIN_COVERED = 32u;      // front layer, disoccluded: a splat from a previous deep domain landed (ML Table 1)
 
 CONST_DEF uint OCCLUDER_NONE = 0xFFFFFFFFu;  // a mark no propagated hit set (GpuDomainMark)
 

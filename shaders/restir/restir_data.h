@@ -44,7 +44,7 @@ struct GpuRestirConstants {
   uint hole_fill_radius;     // restir-multilayer: deep domains within this many pixels of a propagated one are active too (ML 4.3)
   uint layer_mode;           // restir-multilayer: LAYER_MODE_* (the method and its ML validation variants)
   float depth_range_epsilon; // restir-multilayer: a representative hit at t has the depth range [(1-e)t, (1+e)t] (ML Sec. 5)
-  uint pad0;
+  uint view_layer;          // restir-multilayer: 0 shades the image; i >= 1 the estimates of layer i's active domains (tests, debugging)
   uint pad1;
   uint pad2;
   uint pad3;

@@ -45,13 +45,14 @@ struct Case {
     return s.frame_state(f);
   };
   bool expect_bias = false;  // a biased variant the test must detect (the cases' power)
-  // A change to the built-in scene, and its name (part of the reference's key).
+  // A change to the built-in scene, and its name (part of the reference's key); "built": the edit
+  // builds the whole scene (test_scenes.h) and `scene` names it.
   std::string variant;
   std::function<void(scene::Scene&)> edit = [](scene::Scene&) {};
 };
 
 scene::Scene case_scene(const Case& c) {
-  scene::Scene s = scene::builtin_scene(c.scene);
+  scene::Scene s = c.variant == "built" ? scene::Scene{} : scene::builtin_scene(c.scene);
   c.edit(s);
   return s;
 }
@@ -282,6 +283,15 @@ scene::FrameState dof_corner(const scene::Scene& s, uint32_t f) {
   return st;
 }
 
+// test::two_planes with its front quad jumping 60 cm sideways every frame: the back plane it
+// uncovers was hidden one frame and visible the frame before (ML's disocclusion trail).
+void two_planes_scene(scene::Scene& s) { s = two_planes(0.5f, 0.5f); }
+scene::FrameState front_jumping(const scene::Scene& s, uint32_t f) {
+  scene::FrameState st = s.frame_state(0);
+  st.transforms[instance_named(s, "front")] = glm::translate(glm::mat4(1.0f), {f % 2 == 0 ? -0.3f : 0.3f, 0.0f, 0.0f});
+  return st;
+}
+
 std::vector<Case> cases() {
   std::vector<Case> v;
   v.push_back({.name = "initial_only", .scene = "cornell", .options = [](render::RestirOptions& o) {
@@ -412,6 +422,16 @@ std::vector<Case> cases() {
   // demodulated radiance. 64 x 64: at 16 x 16 a pixel spans several squares.
   v.push_back({.name = "albedo_cv_chess", .scene = "chess", .frames = 6, .runs = 32, .size = 64, .reference_runs = 8,
                .reference_spp = 256, .state = [](const scene::Scene& s, uint32_t) { return s.frame_state(0); }});
+  // restir-multilayer (the ML paper) and its two validation variants: the image (front layer) on
+  // carousel and on the two-plane disocclusion, where splats from the back plane's hidden domains
+  // land in the pixels the quad uncovers (tests/restir/multilayer_test.cpp checks that they do).
+  for (const char* mode : {"active", "uniform", "no-depth-ranges"}) {
+    const std::string suffix = std::string(mode) == "active" ? "" : "_" + method_test_name(mode);
+    auto options = [mode](render::RestirOptions& o) { o.layer_mode = mode; };
+    v.push_back({.name = "multilayer_carousel" + suffix, .scene = "carousel", .method = "restir-multilayer", .options = options});
+    v.push_back({.name = "multilayer_two_planes" + suffix, .scene = "two-planes", .method = "restir-multilayer", .options = options,
+                 .state = front_jumping, .variant = "built", .edit = two_planes_scene});
+  }
   return v;
 }
 

@@ -56,6 +56,39 @@ scene::Scene furnace_box(float albedo, float emission, float h) {
   return s;
 }
 
+scene::Scene two_planes(float front_half, float environment) {
+  scene::Scene s;
+  s.name = "two-planes";
+  auto lambert = [&](const char* name, glm::vec3 albedo, glm::vec3 emission) {
+    scene::Material m;
+    m.name = name;
+    m.base_color = albedo;
+    m.specular = 0.0f;
+    m.emission = emission;
+    s.materials.push_back(m);
+    return uint32_t(s.materials.size() - 1);
+  };
+  auto add = [&](const char* name, scene::Mesh mesh) {
+    mesh.name = name;
+    s.meshes.push_back(std::move(mesh));
+    scene::Instance inst;
+    inst.name = name;
+    inst.lod_meshes = {uint32_t(s.meshes.size() - 1)};
+    s.instances.push_back(inst);
+  };
+  add("back", quad_mesh(2.0f, 0.0f, lambert("back", glm::vec3(0.7f), glm::vec3(0.0f))));
+  if (front_half > 0.0f) add("front", quad_mesh(front_half, 1.0f, lambert("front", {0.8f, 0.45f, 0.2f}, glm::vec3(0.0f))));
+  scene::Mesh light;
+  light.primitives.push_back(
+      quad({1.4f, -4.0f, 0.5f}, {1.4f, 4.0f, 0.5f}, {6.0f, 4.0f, 0.5f}, {6.0f, -4.0f, 0.5f}, {0, 0, -1}, lambert("light", glm::vec3(0.0f), glm::vec3(4.0f))));
+  add("light", light);
+  s.environment.radiance = glm::vec3(environment);
+  s.camera.position = {0.0f, 0.0f, 4.0f};
+  s.camera.yfov = 0.6f;
+  s.validate();
+  return s;
+}
+
 uint32_t instance_named(const scene::Scene& s, const std::string& name) {
   for (uint32_t i = 0; i < s.instances.size(); ++i)
     if (s.instances[i].name == name) return i;

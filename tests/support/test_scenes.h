@@ -25,4 +25,14 @@ std::string method_test_name(const std::string& method);
 // One quad of size 2h x 2h in the plane z = z0, facing +Z, with one material.
 scene::Mesh quad_mesh(float half, float z0, uint32_t material);
 
+// Two planes facing a camera at (0, 0, 4) that looks down -Z: the back plane (instance "back",
+// z = 0, 2 m half size, grey Lambert) and the front quad (instance "front", z = 1, half size
+// `front_half`, orange Lambert), lit by a one-sided emitter between them off to the side
+// (instance "light", z = 0.5, x in [1.4, 6], facing -Z, outside the view) and by a constant
+// environment `environment`. With environment 0 no ray from the back plane to the light reaches
+// z = 1, and the light sends nothing upwards, so for paths of up to two segments after the camera
+// (max_depth <= 2) the back plane's radiance does not depend on the front quad: ML Eq. 3's I_2
+// of the back plane equals what the camera sees with the front quad removed (front_half = 0: none).
+scene::Scene two_planes(float front_half, float environment = 0.0f);
+
 }  // namespace strata::test

@@ -46,6 +46,7 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
                  : o.layer_mode == "no-depth-ranges" ? gpu::LAYER_MODE_NO_RANGES
                                                      : gpu::LAYER_MODE_ACTIVE;
   c.depth_range_epsilon = k_depth_range_epsilon;
+  c.view_layer = o.view_layer;
   return c;
 }
 
@@ -84,6 +85,10 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
       layers_reason = measured.reason;
     }
   }
+  if (settings.restir.view_layer >= layers)
+    throw std::runtime_error("restir.view_layer = " + std::to_string(settings.restir.view_layer) + " is outside [0, " +
+                             std::to_string(layers - 1) + "]: the method has " + std::to_string(layers) + " layer" +
+                             (layers == 1 ? "" : "s") + (spec.layers ? " (" + layers_reason + ")" : ""));
   pixels = uint64_t(width) * height;
   domains = pixels * layers;
   constants = gpu::Buffer(ctx, sizeof(gpu::GpuRestirConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "restir constants");

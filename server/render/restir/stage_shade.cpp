@@ -16,7 +16,8 @@ class ShadeStage : public Stage {
               {uniform(BINDING_FRAME, state.shared.constants), uniform(BINDING_RESTIR, state.constants),
                storage(BINDING_COUNTERS, Access::read_write, state.shared.counters),
                storage(BINDING_CONTRIBUTION, Access::read_write, state.contribution),
-               storage(BINDING_ACCUM, Access::read_write, state.shared.accum)}) {}
+               storage(BINDING_ACCUM, Access::read_write, state.shared.accum),
+               history_current(BINDING_DOMAINS, Access::read, state.domain_ranges)}) {}
   StageKind kind() const override { return StageKind::shade; }
   uint32_t timed_passes() const override { return 1; }
   void record(const StageFrame& f) override {

@@ -62,7 +62,9 @@ class TemporalSplatStage : public Stage {
                                                      {in(), storage(BINDING_SPLATS, Access::read, splats_),
                                                       storage(BINDING_SPLAT_OFFSETS, Access::read, offsets_),
                                                       storage(BINDING_SPLAT_LIST, Access::read, list_),
-                                                      history_current(BINDING_PRIMARY, Access::read, state.visibility), ranges(),
+                                                      history_current(BINDING_PRIMARY, Access::read, state.visibility),
+                                                      // read_write: the front layer's DOMAIN_COVERED flag
+                                                      history_current(BINDING_DOMAINS, Access::read_write, state.domain_ranges),
                                                       ranges_prev(), storage(BINDING_DOMAIN_LIST, Access::read, state.domain_list),
                                                       storage(BINDING_DOMAIN_ARGS, Access::read, state.domain_args)}),
                                     std::vector<gpu::SpecConstant>{{SPEC_DOMAIN_LIST, deep ? VK_TRUE : VK_FALSE}, {SPEC_LAYER_STEPPING, stepping}});
