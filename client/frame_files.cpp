@@ -64,6 +64,10 @@ nlohmann::json write_frame(const strata::v1::Frame& frame, const fs::path& dir, 
   const Image* png = find(frame, strata::v1::IMAGE_ENCODING_PNG_PREVIEW);
   if (exr) write_bytes(exr_path, exr->data());
   if (png) write_bytes(png_path, png->data());
+  // The domain map (restir-multilayer; the proto's IMAGE_ENCODING_DOMAIN_MAP says its channels).
+  const Image* domains = find(frame, strata::v1::IMAGE_ENCODING_DOMAIN_MAP);
+  const fs::path domains_path = dir / (stem + "_domains.png");
+  if (domains) write_bytes(domains_path, domains->data());
   if (!exr || !png) {
     const image::Image hdr = hdr_image(frame);
     if (!exr) write_bytes(exr_path, as_string(image::encode_exr(hdr)));
@@ -82,6 +86,7 @@ nlohmann::json write_frame(const strata::v1::Frame& frame, const fs::path& dir, 
   nlohmann::json j = message_to_json(meta);
   j["images"] = images;
   j["files"] = {{"exr", exr_path.filename().string()}, {"png", png_path.filename().string()}};
+  if (domains) j["files"]["domain_map"] = domains_path.filename().string();
   return j;
 }
 

@@ -167,7 +167,7 @@ Runner add_loadtest_command(CLI::App& app) {
   cmd->add_option("--height", o->height, "image height")->capture_default_str();
   cmd->add_option("--spp", o->spp, "samples per pixel per frame")->capture_default_str();
   cmd->add_option("--seed", o->seed, "random seed")->capture_default_str();
-  cmd->add_option("--encodings", o->encodings, "images to request: exr, raw, png (comma-separated)")->capture_default_str();
+  cmd->add_option("--encodings", o->encodings, "images to request: exr, raw, png, domain (the domain map of restir-multilayer; comma-separated)")->capture_default_str();
   cmd->add_option("--camera-path", o->camera_path, "JSON script of FrameInputs, replayed in a loop (see client/camera_path.h)");
   return [o] { return run_loadtest(*o); };
 }

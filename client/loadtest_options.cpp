@@ -21,12 +21,13 @@ std::string num(double v) {
 
 std::vector<v1::ImageEncoding> parse_encoding_list(const std::string& list) {
   static const std::map<std::string, v1::ImageEncoding> names = {
-      {"exr", v1::IMAGE_ENCODING_EXR_HALF}, {"raw", v1::IMAGE_ENCODING_RAW_RGBA16F}, {"png", v1::IMAGE_ENCODING_PNG_PREVIEW}};
+      {"exr", v1::IMAGE_ENCODING_EXR_HALF}, {"raw", v1::IMAGE_ENCODING_RAW_RGBA16F}, {"png", v1::IMAGE_ENCODING_PNG_PREVIEW},
+      {"domain", v1::IMAGE_ENCODING_DOMAIN_MAP}};
   std::vector<v1::ImageEncoding> out;
   std::stringstream ss(list);
   for (std::string item; std::getline(ss, item, ',');) {
     auto it = names.find(item);
-    if (it == names.end()) bad("--encodings: '" + item + "' is not one of exr, raw, png");
+    if (it == names.end()) bad("--encodings: '" + item + "' is not one of exr, raw, png, domain");
     out.push_back(it->second);
   }
   if (out.empty()) bad("--encodings is empty");

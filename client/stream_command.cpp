@@ -241,7 +241,7 @@ Runner add_stream_command(CLI::App& app) {
   cmd->add_option("--max-depth", a->max_depth, "path segments (default: the server's)");
   cmd->add_option("--seed", a->seed, "random seed")->capture_default_str();
   cmd->add_option("--exposure", a->exposure, "PNG preview exposure in stops")->capture_default_str();
-  cmd->add_option("--encodings", a->encodings, "images to request: exr, raw, png (comma-separated)")->capture_default_str();
+  cmd->add_option("--encodings", a->encodings, "images to request: exr, raw, png, domain (the domain map of restir-multilayer; comma-separated)")->capture_default_str();
   cmd->add_option("--out", a->out, "output directory")->capture_default_str();
   cmd->add_option("--camera-path", a->camera_path, "JSON script of FrameInputs, one per frame (see client/camera_path.h)");
   cmd->add_option("--in-flight", a->in_flight, "inputs sent ahead of the frames received (1: lockstep, reproducible)")

@@ -24,6 +24,32 @@ std::string png_message(const png_image& image) { return image.message; }
 
 }  // namespace
 
+std::vector<uint8_t> encode_png_rgb8(std::span<const uint8_t> rgb, uint32_t width, uint32_t height) {
+  // libpng takes the row stride as a signed 32-bit value.
+  if (width == 0 || height == 0 || width > INT_MAX / 3 || height > INT_MAX || rgb.size() != size_t(width) * height * 3) {
+    throw ImageError("encode_png_rgb8: " + std::to_string(rgb.size()) + " bytes for an image of " + std::to_string(width) + "x" +
+                     std::to_string(height) + " (3 per pixel, within the PNG writer's limits)");
+  }
+  png_image image;
+  std::memset(&image, 0, sizeof(image));
+  image.version = PNG_IMAGE_VERSION;
+  image.width = width;
+  image.height = height;
+  image.format = PNG_FORMAT_RGB;
+  const png_int_32 stride = static_cast<png_int_32>(3 * width);
+  // First call sizes the output, second call writes it.
+  png_alloc_size_t size = 0;
+  if (!png_image_write_to_memory(&image, nullptr, &size, 0, rgb.data(), stride, nullptr)) {
+    throw ImageError("encode_png_rgb8: libpng failed: " + png_message(image));
+  }
+  std::vector<uint8_t> bytes(size);
+  if (!png_image_write_to_memory(&image, bytes.data(), &size, 0, rgb.data(), stride, nullptr)) {
+    throw ImageError("encode_png_rgb8: libpng failed: " + png_message(image));
+  }
+  bytes.resize(size);
+  return bytes;
+}
+
 std::vector<uint8_t> encode_png_preview(const Image& img, float exposure_stops) {
   detail::check_image(img, "encode_png_preview");
   if (!std::isfinite(exposure_stops)) {
@@ -50,24 +76,7 @@ std::vector<uint8_t> encode_png_preview(const Image& img, float exposure_stops) 
     for (int c = 0; c < 3; ++c) out[c] = tonemap_to_srgb8(p[c], scale);
   }
 
-  png_image image;
-  std::memset(&image, 0, sizeof(image));
-  image.version = PNG_IMAGE_VERSION;
-  image.width = img.width;
-  image.height = img.height;
-  image.format = PNG_FORMAT_RGB;
-  const png_int_32 stride = static_cast<png_int_32>(3 * img.width);
-  // First call sizes the output, second call writes it.
-  png_alloc_size_t size = 0;
-  if (!png_image_write_to_memory(&image, nullptr, &size, 0, rgb.data(), stride, nullptr)) {
-    throw ImageError("encode_png_preview: libpng failed: " + png_message(image));
-  }
-  std::vector<uint8_t> bytes(size);
-  if (!png_image_write_to_memory(&image, bytes.data(), &size, 0, rgb.data(), stride, nullptr)) {
-    throw ImageError("encode_png_preview: libpng failed: " + png_message(image));
-  }
-  bytes.resize(size);
-  return bytes;
+  return encode_png_rgb8(rgb, img.width, img.height);
 }
 
 void write_png_preview(const std::filesystem::path& path, const Image& img, float exposure_stops) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/timer.h"
 #include "render/frame_stats.h"
+#include "render/restir/domain_map.h"
 #include "render/scene_gpu.h"
 
 namespace strata::render {
@@ -50,6 +52,8 @@ class Method {
   virtual std::map<std::string, uint64_t> memory_bytes() const = 0;
   // Whether its domains start at the visibility buffer's camera samples (GpuFrameConstants::primary_mode).
   virtual bool fixed_primary() const { return false; }
+  // The last frame's domain map (render/restir/domain_map.h); none without pixel layers.
+  virtual std::optional<DomainMap> domain_map() const { return std::nullopt; }
   // Adds the method's own counters (frame_data.h COUNTER_*) to the frame statistics.
   virtual void collect(std::span<const uint32_t> counters, FrameStats& stats) const {
     (void)counters;

@@ -90,6 +90,8 @@ void RestirOptions::validate() const {
   require(view_layer < LAYERS_MAX, "restir.view_layer = " + std::to_string(view_layer) + " is outside " + range(0u, LAYERS_MAX - 1));
 }
 
+std::optional<DomainMap> Renderer::domain_map() const { return method_->domain_map(); }
+
 Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSettings settings)
     : ctx_(ctx), settings_(std::move(settings)) {
   settings_.validate();

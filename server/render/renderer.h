@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "gpu/timer.h"
 #include "image/image.h"
 #include "render/frame_stats.h"
+#include "render/restir/domain_map.h"
 #include "render/method.h"
 #include "restir/restir_limits.h"
 #include "render/method_table.h"
@@ -120,6 +122,7 @@ struct FrameResult {
   image::Image image;  // mean radiance per pixel over every sample accumulated so far
   FrameStats stats;
   uint64_t accumulated_spp = 0;
+  std::optional<DomainMap> domain_map;  // filled by whoever asks Renderer::domain_map (the DOMAIN_MAP encoding)
 };
 
 class Renderer {
@@ -131,6 +134,9 @@ class Renderer {
   // samples add to those of previous calls instead of replacing them (reference rendering of
   // one frame state); the caller keeps the frame state unchanged while accumulating.
   FrameResult render(const scene::FrameState& frame, uint32_t frame_index, bool accumulate = false);
+
+  // The last rendered frame's domain map (restir-multilayer; none for methods without pixel layers).
+  std::optional<DomainMap> domain_map() const;
 
   // Device memory held for this renderer, by buffer group (what FrameStats::memory_bytes reports).
   std::map<std::string, uint64_t> memory_bytes() const;

@@ -33,6 +33,6 @@ void ServiceConfig::validate() const {
                                 " makes a frame larger than gRPC's 2 GiB message limit");
 }
 
-uint64_t max_frame_bytes(uint64_t pixels) { return pixels * 21 + (1ull << 20); }
+uint64_t max_frame_bytes(uint64_t pixels) { return pixels * 25 + (1ull << 20); }
 
 }  // namespace strata::service

@@ -43,7 +43,8 @@ struct ServiceConfig {
 };
 
 // Upper bound of a Frame message for `pixels` pixels with every encoding at once (raw RGBA16F
-// 8 B/px, EXR half with ZIP at most 9 B/px, PNG at most 4 B/px, plus headers and statistics).
+// 8 B/px, EXR half with ZIP at most 9 B/px, the preview and domain map PNGs at most 4 B/px each,
+// plus headers and statistics).
 uint64_t max_frame_bytes(uint64_t pixels);
 
 }  // namespace strata::service

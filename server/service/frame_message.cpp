@@ -1,5 +1,7 @@
 #include "service/frame_message.h"
 
+#include <stdexcept>
+
 #include "service/encoding.h"
 
 namespace strata::service {
@@ -55,7 +57,12 @@ v1::Frame make_frame_message(const RenderedFrame& f) {
   double encode_ms = 0.0;
   for (auto encoding : f.encodings) {
     v1::Image* img = m.add_images();
-    *img = encode_image(f.result.image, encoding, f.exposure);
+    if (encoding == v1::IMAGE_ENCODING_DOMAIN_MAP) {
+      if (!f.result.domain_map) throw std::logic_error("DOMAIN_MAP requested of a frame without a domain map");
+      *img = encode_domain_map(*f.result.domain_map);
+    } else {
+      *img = encode_image(f.result.image, encoding, f.exposure);
+    }
     encode_ms += img->encode_ms();
   }
   for (const auto& p : f.result.stats.pass_ms) {

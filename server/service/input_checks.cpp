@@ -109,7 +109,7 @@ std::vector<v1::ImageEncoding> check_encodings(const google::protobuf::RepeatedF
     const int e = requested[i];
     const std::string at = field + "[" + std::to_string(i) + "]";
     if (e == v1::IMAGE_ENCODING_UNSPECIFIED || !v1::ImageEncoding_IsValid(e))
-      fail_invalid(at + " = " + std::to_string(e) + " is not an image encoding (EXR_HALF = 1, RAW_RGBA16F = 2, PNG_PREVIEW = 3)");
+      fail_invalid(at + " = " + std::to_string(e) + " is not an image encoding (EXR_HALF = 1, RAW_RGBA16F = 2, PNG_PREVIEW = 3, DOMAIN_MAP = 4)");
     const auto enc = static_cast<v1::ImageEncoding>(e);
     for (auto seen : out)
       if (seen == enc) fail_invalid(at + " = " + encoding_name(enc) + " is requested twice");
@@ -123,6 +123,7 @@ std::string encoding_name(v1::ImageEncoding e) {
     case v1::IMAGE_ENCODING_EXR_HALF: return "EXR_HALF";
     case v1::IMAGE_ENCODING_RAW_RGBA16F: return "RAW_RGBA16F";
     case v1::IMAGE_ENCODING_PNG_PREVIEW: return "PNG_PREVIEW";
+    case v1::IMAGE_ENCODING_DOMAIN_MAP: return "DOMAIN_MAP";
     default: return "UNSPECIFIED";
   }
 }

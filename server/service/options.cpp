@@ -70,6 +70,14 @@ void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, cons
   check_float(o.has_exposure(), o.exposure(), -64.0f, 64.0f, p + "exposure");
 }
 
+void check_method_encodings(const render::MethodSpec& method, const std::vector<v1::ImageEncoding>& encodings,
+                            const std::string& field) {
+  for (size_t i = 0; i < encodings.size(); ++i)
+    if (encodings[i] == v1::IMAGE_ENCODING_DOMAIN_MAP && !method.layers)
+      fail_invalid(field + "[" + std::to_string(i) + "] = DOMAIN_MAP but method " + method.name +
+                   " has one domain per pixel: the domain map needs pixel layers (method restir-multilayer)");
+}
+
 void check_method_options(const render::MethodSpec& method, const v1::RenderOptions& o, const std::string& field,
                           bool defaulted) {
   if (method.reuse && o.has_spp() && o.spp() != 1)

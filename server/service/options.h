@@ -23,6 +23,9 @@ void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, cons
 // prefixes the names. `defaulted`: the client named no method (the message then says which it got).
 void check_method_options(const render::MethodSpec& method, const v1::RenderOptions& o, const std::string& field,
                           bool defaulted = false);
+// DOMAIN_MAP needs a method with pixel layers (restir-multilayer): INVALID_ARGUMENT otherwise.
+void check_method_encodings(const render::MethodSpec& method, const std::vector<v1::ImageEncoding>& encodings,
+                            const std::string& field);
 // Every field set: the requested value, else the default (max_depth at most limits.max_depth;
 // spatial_radius from the image `height`, render::RestirOptions::default_spatial_radius; confidence_cap
 // the `method`'s).

@@ -1,5 +1,6 @@
 #include "service/session.h"
 
+#include <algorithm>
 #include <glm/glm.hpp>
 
 #include "include/frame_data.h"
@@ -240,6 +241,9 @@ RenderedFrame Session::render(PendingInput input) {
     ++frames_rendered_;
     inputs_coalesced_ += input.coalesced;
   }
+  // The domain map is read back only for frames that carry it (a few MB at 256 x 256 x 3 layers).
+  if (std::find(f.encodings.begin(), f.encodings.end(), v1::IMAGE_ENCODING_DOMAIN_MAP) != f.encodings.end())
+    f.result.domain_map = renderer_->domain_map();
   metrics_.frames_rendered.fetch_add(1);
   metrics_.inputs_coalesced.fetch_add(input.coalesced);
   f.held = GaugeHold(metrics_.buffered_frame_bytes, int64_t(f.result.image.rgba.size() * sizeof(float)));

@@ -20,6 +20,7 @@ SessionSpec check_create_session(const v1::CreateSessionRequest& req, const Serv
   spec.height = req.resolution().height();
   spec.seed = req.seed();
   spec.encodings = check_encodings(req.encodings(), "encodings");
+  check_method_encodings(*spec.method, spec.encodings, "encodings");
   if (!req.has_scene()) fail_invalid("scene is required: set scene.builtin, scene.path or scene.glb");
   return spec;
 }

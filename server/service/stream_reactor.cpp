@@ -133,6 +133,7 @@ void StreamReactor::handle_input() {
                                  std::to_string(last));
   PendingInput input = parse_frame_input(in, s->scene(), core_.config.limits);
   check_method_options(s->method(), input.options, "options", s->method_defaulted());
+  check_method_encodings(s->method(), input.encodings, "encodings");
   s->note_input(in.sequence());
   std::lock_guard lock(mu_);
   last_sequence_ = in.sequence();

@@ -54,6 +54,7 @@ const Stage* RestirMethod::find(StageKind kind) const {
 // output is copied in either case.
 void RestirMethod::record(VkCommandBuffer cmd, gpu::PassTimer& timer, const MethodFrame& f) {
   const StageFrame frame{cmd, timer, f, state_.shared.scene.parity()};
+  last_parity_ = frame.parity;
   const bool spatial = find(StageKind::spatial) != nullptr;
   for (const auto& stage : stages_) {
     if (stage->kind() == StageKind::shade && (!spatial || state_.multilayer())) {
@@ -64,6 +65,11 @@ void RestirMethod::record(VkCommandBuffer cmd, gpu::PassTimer& timer, const Meth
     }
     stage->record(frame);
   }
+}
+
+std::optional<DomainMap> RestirMethod::domain_map() const {
+  if (!state_.multilayer()) return std::nullopt;
+  return read_domain_map(state_.domain_ranges.current(last_parity_), state_.width, state_.height, state_.layers);
 }
 
 std::vector<PassDecision> RestirMethod::decisions() const {

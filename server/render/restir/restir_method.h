@@ -21,10 +21,12 @@ class RestirMethod : public Method {
   std::map<std::string, uint64_t> memory_bytes() const override;
   void collect(std::span<const uint32_t> counters, FrameStats& stats) const override;
   bool fixed_primary() const override { return state_.spec.fixed_primary; }
+  std::optional<DomainMap> domain_map() const override;
 
  private:
   const Stage* find(StageKind kind) const;
   RestirState state_;
+  int last_parity_ = 0;  // the parity of the last recorded frame (its domain ranges are current there)
   std::vector<std::unique_ptr<Stage>> stages_;  // in frame order
 };
 
