@@ -11,9 +11,9 @@
 //     carried; it then propagates to the next frame. (Hole filling is domain_fill's.)
 //   - Depth ranges [(1-e)t, (1+e)t], where two adjacent ones overlap both clamped to the midpoint.
 // The front layer's disocclusion (ML's disoccluded pixels, Table 1): its representative hit, moved
-// back with its object, was hidden from the previous camera (a closest-hit query in the previous
-// frame's TLAS, as the disocclusion mask of the evaluation tests it: render/disocclusion.h), or fell
-// outside the previous image, or its object changed LoD level.
+// back with its object, was hidden from the previous camera behind another surface (a closest-hit
+// query in the previous frame's TLAS, as the evaluation's disocclusion mask tests it:
+// render/disocclusion.h), or its object changed LoD level; not when it fell outside the previous image.
 // A census of every fourth pixel in each direction walks all k layers, so that the frame reports how
 // many deep domains a uniform k-layer scheme would keep (ML Table 1) without walking every pixel.
 #extension GL_EXT_ray_query : require
@@ -35,8 +35,11 @@ layout(set = 0, binding = BINDING_DOMAIN_MARKS, std430) readonly buffer Marks { 
 
 const uint CENSUS_STRIDE = 4u;  // the uniform census: every 4th pixel in x and y
 
-// Whether the front layer's hit was hidden from the previous camera (or outside its image, or its
-// object switched LoD level): one closest-hit query in the previous frame.
+// Whether the front layer's hit was hidden from the previous camera behind another surface (or its
+// object switched LoD level): one closest-hit query in the previous frame. A hit outside the
+// previous image is not a disocclusion (ML Table 1 counts surfaces that were occluded: no layer of
+// any scheme held a surface the previous camera did not look at); the evaluation's disocclusion
+// mask (render/disocclusion.h) counts both, as every pixel without history.
 bool disoccluded(GpuPrimaryHit front, inout uint rays) {
   if ((u_frame.history_flags & HISTORY_VALID) == 0u) return false;
   ResolvedSurface before = resolve_surface(true, primary_surface(front));
@@ -44,7 +47,7 @@ bool disoccluded(GpuPrimaryHit front, inout uint rays) {
   vec3 p = before.hit.position;  // in the previous frame's render space: its camera at the origin
   float dist = length(p);
   vec3 ndc = camera_ndc(u_frame.prev_camera, p);
-  if (!(ndc.z > 0.0 && abs(ndc.x) <= 1.0 && abs(ndc.y) <= 1.0) || !(dist > 0.0)) return true;
+  if (!(ndc.z > 0.0 && abs(ndc.x) <= 1.0 && abs(ndc.y) <= 1.0) || !(dist > 0.0)) return false;
   RayHit h;
   rays++;
   return trace_closest_in(true, vec3(0.0), p / dist, dist * (1.0 + LAYER_OCCLUDER_MARGIN), h) && h.t < dist * (1.0 - LAYER_OCCLUDER_MARGIN);
