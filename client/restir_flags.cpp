@@ -21,6 +21,8 @@ void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
   cmd->add_option("--light-candidates", r.light_candidates, "ReSTIR NEE samples per path vertex (1..32; default 1)");
   cmd->add_option("--disocclusion-spatial-neighbors", r.disocclusion_spatial_neighbors,
                   "ReSTIR spatial neighbours of pixels without history (0..8; 0: --spatial-neighbors; default 6)");
+  cmd->add_option("--disocclusion-initial-candidates", r.disocclusion_initial_candidates,
+                  "ReSTIR splat: candidate paths of pixels no splat reached (0..64; 0: --initial-candidates; default 0)");
   cmd->add_option("--direct-strata", r.direct_strata,
                   "ReSTIR: G x G stratified camera samples for what pixels at edges of directly seen emission see (1..8; default 3)");
   cmd->add_option("--albedo-strata", r.albedo_strata,
@@ -56,6 +58,8 @@ std::string restir_flags_text(const RestirFlags& r) {
   if (r.initial_candidates) add("--initial-candidates", std::to_string(*r.initial_candidates));
   if (r.light_candidates) add("--light-candidates", std::to_string(*r.light_candidates));
   if (r.disocclusion_spatial_neighbors) add("--disocclusion-spatial-neighbors", std::to_string(*r.disocclusion_spatial_neighbors));
+  if (r.disocclusion_initial_candidates)
+    add("--disocclusion-initial-candidates", std::to_string(*r.disocclusion_initial_candidates));
   if (r.direct_strata) add("--direct-strata", std::to_string(*r.direct_strata));
   if (r.albedo_strata) add("--albedo-strata", std::to_string(*r.albedo_strata));
   if (r.layers) add("--layers", std::to_string(*r.layers));
@@ -87,6 +91,7 @@ void set_restir_options(const RestirFlags& r, v1::RenderOptions& o) {
   if (r.initial_candidates) o.set_initial_candidates(*r.initial_candidates);
   if (r.light_candidates) o.set_light_candidates(*r.light_candidates);
   if (r.disocclusion_spatial_neighbors) o.set_disocclusion_spatial_neighbors(*r.disocclusion_spatial_neighbors);
+  if (r.disocclusion_initial_candidates) o.set_disocclusion_initial_candidates(*r.disocclusion_initial_candidates);
   if (r.direct_strata) o.set_direct_strata(*r.direct_strata);
   if (r.albedo_strata) o.set_albedo_strata(*r.albedo_strata);
   if (r.layers) o.set_layers(*r.layers);

@@ -14,7 +14,7 @@ namespace strata::client {
 struct RestirFlags {
   std::string shift, mis, suffix, layer_mode;  // empty: not given
   std::optional<float> confidence_cap, still_confidence_cap, spatial_radius;
-  std::optional<uint32_t> spatial_neighbors, initial_candidates, light_candidates, disocclusion_spatial_neighbors, direct_strata,
+  std::optional<uint32_t> spatial_neighbors, initial_candidates, light_candidates, disocclusion_spatial_neighbors, disocclusion_initial_candidates, direct_strata,
       albedo_strata, layers, hole_fill_radius;
   bool no_temporal = false, no_spatial = false, biased = false, no_temporal_filter = false;
 };

@@ -107,6 +107,9 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_option("--disocclusion-spatial-neighbors", r.disocclusion_spatial_neighbors,
                   "ReSTIR spatial neighbours of pixels without history (0..8; 0: --spatial-neighbors)")
       ->capture_default_str();
+  cmd->add_option("--disocclusion-initial-candidates", r.disocclusion_initial_candidates,
+                  "ReSTIR splat: candidate paths of pixels no splat reached (0..64; 0: --initial-candidates)")
+      ->capture_default_str();
   cmd->add_option("--direct-strata", r.direct_strata, "ReSTIR: G x G camera samples at edges of directly seen emission (1..8)")
       ->capture_default_str();
   cmd->add_option("--albedo-strata", r.albedo_strata,

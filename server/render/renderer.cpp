@@ -87,6 +87,9 @@ void RestirOptions::validate() const {
           "restir.hole_fill_radius = " + std::to_string(hole_fill_radius) + " is outside " + range(0u, RESTIR_MAX_HOLE_FILL_RADIUS));
   require(layer_mode == "active" || layer_mode == "uniform" || layer_mode == "no-depth-ranges",
           "restir.layer_mode = '" + layer_mode + "' is not one of: active, uniform, no-depth-ranges");
+  require(disocclusion_initial_candidates <= RESTIR_MAX_INITIAL_CANDIDATES,
+          "restir.disocclusion_initial_candidates = " + std::to_string(disocclusion_initial_candidates) + " is outside " +
+              range(0u, RESTIR_MAX_INITIAL_CANDIDATES) + " (0 = initial_candidates)");
   require(view_layer < LAYERS_MAX, "restir.view_layer = " + std::to_string(view_layer) + " is outside " + range(0u, LAYERS_MAX - 1));
 }
 

@@ -75,6 +75,9 @@ struct RestirOptions {
   // estimate (ML Eq. 3: the radiance its deep surface sends to the camera as if nothing hid it;
   // 0 where that domain is inactive). For tests and for looking at a layer.
   uint32_t view_layer = 0;
+  // Splat methods: initial candidates of the pixels no temporal splat reached (0: initial_candidates);
+  // the ML paper's "more initial spp" disocclusion baseline (Fig. 9).
+  uint32_t disocclusion_initial_candidates = 0;
   float moving_cap(const MethodSpec& method) const { return confidence_cap > 0.0f ? confidence_cap : method.confidence_cap; }
   float still_cap(const MethodSpec& method) const {
     return still_confidence_cap > 0.0f ? still_confidence_cap : moving_cap(method);

@@ -131,6 +131,18 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                            : "neighbours for pixels whose reservoir holds no history (disoccluded, or the first frame), "
                              "instead of spatial_neighbors"));
   }
+  {
+    const uint32_t n = eff.disocclusion_initial_candidates();
+    const bool splat_sort = temporal && method.splatting;
+    out.push_back(make("disocclusion_initial_candidates",
+                       asked(req.has_disocclusion_initial_candidates(), u(req.disocclusion_initial_candidates())), u(n),
+                       splat_sort && n > 0,
+                       !method.reuse        ? no_reuse
+                       : !method.splatting  ? "splat methods only: the gather methods do not know before the initial pass which pixels get no history"
+                       : !temporal          ? no_temporal
+                       : n == 0             ? "pixels no splat reached take initial_candidates like every other pixel"
+                                            : "candidate paths of the pixels no splat reached (the splat sort runs before the initial pass; ML Fig. 9 \"more initial spp\")"));
+  }
   const render::RestirOptions options = restir_options(eff);
   const bool visibility_buffer = options.visibility_buffer(method.fixed_primary);
   out.push_back(make("direct_strata", asked(req.has_direct_strata(), u(req.direct_strata())), u(eff.direct_strata()),

@@ -42,6 +42,7 @@ std::vector<std::string> restir_changes(const render::RestirOptions& a, const re
   field("light_candidates", a.light_candidates, b.light_candidates);
   field("splats_per_frame", a.splats_per_frame, b.splats_per_frame);
   field("disocclusion_spatial_neighbors", a.disocclusion_spatial_neighbors, b.disocclusion_spatial_neighbors);
+  field("disocclusion_initial_candidates", a.disocclusion_initial_candidates, b.disocclusion_initial_candidates);
   field("direct_strata", a.direct_strata, b.direct_strata);
   field("albedo_strata", a.albedo_strata, b.albedo_strata);
   field("temporal_filter", a.temporal_filter, b.temporal_filter);

@@ -110,7 +110,8 @@ CONST_DEF uint COUNTER_SPLAT_RANGE_RAYS = 55u;      // closest-hit queries restr
 CONST_DEF uint COUNTER_SPLAT_STEP_RAYS = 56u;       // stepping rays of the layer assignment without depth ranges
 CONST_DEF uint COUNTER_SPLATS_DEEP = 57u;           // forward splats that landed in a deep domain
 CONST_DEF uint COUNTER_SPLATS_NO_LAYER = 58u;       // forward splats hidden now and in no active domain's depth range
-CONST_DEF uint COUNTER_COUNT = 59u;
+CONST_DEF uint COUNTER_DISOCCLUSION_BOOSTED = 59u;  // front-layer pixels no splat reached that took disocclusion_initial_candidates
+CONST_DEF uint COUNTER_COUNT = 60u;
 
 STRATA_NAMESPACE_END
 

@@ -42,7 +42,19 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
 layout(set = 0, binding = BINDING_DOMAIN_LIST, std430) readonly buffer DomainList { uint b_domain_list[]; };
 layout(set = 0, binding = BINDING_DOMAIN_ARGS, std430) readonly buffer DomainArgs { GpuDomainArgs b_domain_args; };
+layout(set = 0, binding = BINDING_SPLAT_OFFSETS, std430) readonly buffer SplatOffsets { uint b_splat_offsets[]; };
 layout(constant_id = SPEC_DOMAIN_LIST) const bool k_domain_list = false;
+
+// The candidates of a front-layer pixel: disocclusion_initial_candidates where this frame's splat
+// counting sort (run before this pass) landed no splat, the ML paper's "more initial spp" baseline
+// (Fig. 9); else initial_candidates. Unbiased either way: the count is fixed before any candidate.
+uint initial_candidates_of(uint domain) {
+  uint boost = u_restir.disocclusion_initial_candidates;
+  if (boost == 0u || (u_frame.history_flags & HISTORY_VALID) == 0u) return u_restir.initial_candidates;
+  if (b_splat_offsets[domain + 1u] != b_splat_offsets[domain]) return u_restir.initial_candidates;
+  atomicAdd(b_counters[COUNTER_DISOCCLUSION_BOOSTED], 1u);
+  return boost;
+}
 
 uint g_rays = 0u;
 GrisState g_state;
@@ -406,8 +418,9 @@ void main() {
   g_selected_f = vec3(0.0);
   g_primary_emission = vec3(0.0);
   g_select_rng = rng_init(index, 0x51EC7u, u_frame.frame_index, u_frame.seed);
-  float n_init = float(u_restir.initial_candidates);
-  for (uint p = 0u; p < u_restir.initial_candidates; ++p)
+  uint candidates = initial_candidates_of(domain);
+  float n_init = float(candidates);
+  for (uint p = 0u; p < candidates; ++p)
     trace_candidates(pixel, rng_key(index, p, u_frame.frame_index, u_frame.seed), n_init);
 
   Reservoir r = g_selected;
@@ -438,5 +451,5 @@ void main() {
   }
   if (g_state.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], g_state.rejected);
   atomicAdd(b_counters[COUNTER_RAYS_INITIAL], g_rays);
-  atomicAdd(b_counters[COUNTER_PATHS], u_restir.initial_candidates);
+  atomicAdd(b_counters[COUNTER_PATHS], candidates);
 }

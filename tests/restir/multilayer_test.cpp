@@ -232,6 +232,28 @@ TEST_P(MultilayerNumerics, EveryPixelAndLayerIsFinite) {
   }
 }
 
+// The ML paper's "more initial spp" baseline (Fig. 9) for the splat methods: the splat sort runs
+// before the initial pass, and exactly the front-layer pixels no splat reached (temporal.no_history)
+// trace disocclusion_initial_candidates paths. Its unbiasedness: restir_unbiased_test.cpp.
+TEST_F(MultilayerDomains, DisocclusionBoostTakesThePixelsNoSplatReached) {
+  const scene::Scene s = two_planes(0.5f, 0.5f);
+  for (const char* method : {"restir-splat", "restir-multilayer"}) {
+    render::RenderSettings rs = multilayer_settings(32, 5);
+    rs.method = method;
+    rs.restir.disocclusion_initial_candidates = 4;
+    render::Renderer renderer(gpu_context(), s, rs);
+    uint64_t boosted_total = 0;
+    for (uint32_t f = 0; f < 4; ++f) {
+      auto r = renderer.render(with_front_at(s, jump_offset(f)), f);
+      if (f == 0) continue;
+      const uint64_t boosted = r.stats.reuse.at("initial.disocclusion_boosted");
+      EXPECT_EQ(boosted, r.stats.reuse.at("temporal.no_history")) << method << " frame " << f;
+      boosted_total += boosted;
+    }
+    EXPECT_GT(boosted_total, 0u) << method << ": the jumping quad leaves pixels no splat reaches";
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Views, MultilayerNumerics, ::testing::ValuesIn(numerics_cases()),
                          [](const ::testing::TestParamInfo<NumericsCase>& p) { return std::string(p.param.name); });
 

@@ -338,6 +338,11 @@ std::vector<Case> cases() {
   v.push_back({.name = "splat_moving_camera", .scene = "cornell", .method = "restir-splat", .options = splat_only, .state = moving_camera});
   v.push_back({.name = "splat_forward_motion", .scene = "cornell", .method = "restir-splat", .options = splat_only, .state = forward_camera});
   v.push_back({.name = "splat_carousel", .scene = "carousel", .method = "restir-splat"});
+  // The ML paper's "more initial spp" disocclusion baseline: 4 candidates where no splat landed.
+  v.push_back({.name = "splat_forward_motion_boost", .scene = "cornell", .method = "restir-splat", .options = [](render::RestirOptions& o) {
+                 o.spatial = false;
+                 o.disocclusion_initial_candidates = 4;
+               }, .state = forward_camera});
   v.push_back({.name = "splat_depth_of_field", .scene = "cornell", .method = "restir-splat", .options = splat_only, .state = dof_camera});
   // restir-splat-backup: the backup sample and the MIS of RS-supp Eq. 20-22.
   v.push_back({.name = "splat_backup_moving_camera", .scene = "cornell", .method = "restir-splat-backup", .options = splat_only,

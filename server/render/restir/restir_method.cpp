@@ -48,7 +48,8 @@ const Stage* RestirMethod::find(StageKind kind) const {
   return nullptr;
 }
 
-// The frame: primary -> [domain_init] -> initial -> temporal -> spatial -> shade. The stage that writes the
+// The frame: primary -> [domain_init] -> [splat sort] -> initial -> temporal -> spatial -> shade
+// (the splat stage's counting sort runs before the initial stage: Stage::record_before_initial). The stage that writes the
 // frame's final reservoirs into history.current is spatial; without it, the temporal output (work) is
 // copied there. Spatial reuse is on the front layer only (ML Sec. 5), so the deep layers' temporal
 // output is copied in either case.
@@ -57,6 +58,8 @@ void RestirMethod::record(VkCommandBuffer cmd, gpu::PassTimer& timer, const Meth
   last_parity_ = frame.parity;
   const bool spatial = find(StageKind::spatial) != nullptr;
   for (const auto& stage : stages_) {
+    if (stage->kind() == StageKind::initial)
+      for (const auto& early : stages_) early->record_before_initial(frame);
     if (stage->kind() == StageKind::shade && (!spatial || state_.multilayer())) {
       const VkDeviceSize front = spatial ? sizeof(gpu::PackedReservoir) * state_.pixels : 0;  // spatial wrote layer 0
       VkBufferCopy region{front, front, state_.work.size() - front};

@@ -47,6 +47,9 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
                                                      : gpu::LAYER_MODE_ACTIVE;
   c.depth_range_epsilon = k_depth_range_epsilon;
   c.view_layer = o.view_layer;
+  // Only where the splat counting sort runs before the initial stage (it says where no splat landed).
+  const bool splat_sort = spec.temporal == StageKind::temporal_splat && o.temporal;
+  c.disocclusion_initial_candidates = splat_sort ? o.disocclusion_initial_candidates : 0u;
   return c;
 }
 
@@ -104,6 +107,8 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
   // the initial pass binds one entry that it never reads (its layout has the binding).
   const size_t entries = primary_stage ? size_t(domains) : 1;
   visibility = PingPong(ctx, sizeof(gpu::GpuPrimaryHit) * entries, "visibility buffer");
+  const size_t offset_entries = splat_sort() ? size_t(domains) + 1 : 1;
+  splat_offsets = device_storage(ctx, sizeof(uint32_t) * offset_entries, "splat offsets");
   const size_t layer_entries = multilayer() ? size_t(domains) : 1;
   domain_ranges = PingPong(ctx, sizeof(gpu::GpuDomainRange) * layer_entries, "domain ranges");
   domain_marks = device_storage(ctx, sizeof(gpu::GpuDomainMark) * layer_entries, "domain marks");

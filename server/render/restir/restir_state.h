@@ -40,11 +40,17 @@ struct RestirState {
                               // deeper layers (GpuPrimaryHit); one entry when no primary stage runs
   // Pixel-layer domains (restir/layer_data.h; stage domain_init). Every splat method binds them (one
   // entry each but for restir-multilayer with k > 1 layers).
+  // Splat methods: the splat counting sort's exclusive prefix sum over domains (domains + 1 entries;
+  // stage temporal-splat writes it before the initial stage, which reads it: pixels no splat reached
+  // take disocclusion_initial_candidates); one entry for the other methods.
+  gpu::Buffer splat_offsets;
   PingPong domain_ranges;     // per domain: depth range, flags, occluder (GpuDomainRange)
   gpu::Buffer domain_marks;   // per domain: occluders of the representative hits propagated into it (GpuDomainMark)
   gpu::Buffer domain_list;    // the active deep domains, compacted
   gpu::Buffer domain_args;    // GpuDomainArgs: the list dispatch's workgroups and the list's length
   bool multilayer() const { return layers > 1; }
+  // The splat stage's counting sort runs (a splat method with temporal reuse).
+  bool splat_sort() const { return spec.temporal == StageKind::temporal_splat && settings.restir.temporal; }
   // layer_mode uniform / no-depth-ranges: deep domains by rank, a splat's layer by walking its camera ray.
   bool layer_stepping() const { return multilayer() && settings.restir.layer_mode != "active"; }
 

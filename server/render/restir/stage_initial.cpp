@@ -1,6 +1,7 @@
 #include "render/restir/stages.h"
 
 #include "include/bindings.h"
+#include "include/frame_data.h"
 #include "render/restir/restir_state.h"
 
 namespace strata::render {
@@ -24,13 +25,17 @@ class InitialStage : public Stage {
       if (deep_) deep_->dispatch_indirect(f.cmd, f.parity, state_.domain_args);
     });
   }
+  void collect(std::span<const uint32_t> c, FrameStats& s) const override {
+    if (boost()) s.reuse["initial.disocclusion_boosted"] = c[gpu::COUNTER_DISOCCLUSION_BOOSTED];  // ML Fig. 9 "more initial spp"
+  }
   PassDecision decision() const override {
     const RestirOptions& o = state_.settings.restir;
     const bool di = state_.spec.direct_lighting || o.direct_lighting;
     std::string paths = di ? "one-bounce paths (ReSTIR DI)" : "paths of up to " + std::to_string(state_.settings.max_depth) + " segments";
     std::string start = state_.spec.fixed_primary ? ", from the pixel's primary hit of the frame" : ", each with its own camera ray";
     return {"initial", true,
-            std::to_string(o.initial_candidates) + " candidate path(s), " + std::to_string(o.light_candidates) +
+            std::to_string(o.initial_candidates) + " candidate path(s)" +
+                (boost() ? " (" + std::to_string(o.disocclusion_initial_candidates) + " where no splat landed)" : std::string()) + ", " + std::to_string(o.light_candidates) +
                 " light candidate(s) per vertex, " + paths + start +
                 (deep_ ? "; and one canonical sample per active deep domain (ML Eq. 3-4: the first hit within its depth range, hidden from the camera)"
                        : "")};
@@ -42,8 +47,10 @@ class InitialStage : public Stage {
                             {history_current(BINDING_PRIMARY, Access::read, state_.visibility),
                              history_current(BINDING_DOMAINS, Access::read, state_.domain_ranges),
                              storage(BINDING_DOMAIN_LIST, Access::read, state_.domain_list),
-                             storage(BINDING_DOMAIN_ARGS, Access::read, state_.domain_args)});
+                             storage(BINDING_DOMAIN_ARGS, Access::read, state_.domain_args),
+                             storage(BINDING_SPLAT_OFFSETS, Access::read, state_.splat_offsets)});
   }
+  bool boost() const { return state_.splat_sort() && state_.settings.restir.disocclusion_initial_candidates > 0; }
   std::vector<gpu::SpecConstant> spec(bool deep) const {
     return {{SPEC_DOMAIN_LIST, deep ? VK_TRUE : VK_FALSE}, {SPEC_LAYER_STEPPING, state_.layer_stepping() ? VK_TRUE : VK_FALSE}};
   }

@@ -26,7 +26,7 @@ class TemporalSplatStage : public Stage {
   explicit TemporalSplatStage(const RestirState& state)
       : state_(state),
         count_(device_storage(state.shared.ctx, sizeof(uint32_t) * state.domains, "splat counts")),
-        offsets_(device_storage(state.shared.ctx, sizeof(uint32_t) * (state.domains + 1), "splat offsets")) {
+        offsets_(state.splat_offsets) {
     allocate_records(1);
     const auto& ctx = state.shared.ctx;
     const GpuScene* scene = &state.shared.scene;
@@ -76,7 +76,9 @@ class TemporalSplatStage : public Stage {
   StageKind kind() const override { return StageKind::temporal_splat; }
   uint32_t timed_passes() const override { return 4; }
 
-  void record(const StageFrame& f) override {
+  // The counting sort, before the initial stage (RestirMethod::record): the forward splats and
+  // where they land do not depend on this frame's canonical samples.
+  void record_before_initial(const StageFrame& f) override {
     ran_ = f.frame.history_valid;
     moved_ = f.frame.scene_moved;
     changed_ = state_.shared.scene.changed_instances();
@@ -97,6 +99,11 @@ class TemporalSplatStage : public Stage {
     });
     timed(f, "splat_scan", [&] { scan_->dispatch_1d(f.cmd, f.parity, 1); });
     timed(f, "splat_insert", [&] { insert_->dispatch_layers(f.cmd, f.parity, w, h, state_.layers * partitions_); });
+  }
+
+  void record(const StageFrame& f) override {
+    if (!ran_) return;
+    const uint32_t w = state_.width, h = state_.height;
     timed(f, "splat_resample", [&] {
       resample_->dispatch_2d(f.cmd, f.parity, w, h);
       if (resample_deep_) resample_deep_->dispatch_indirect(f.cmd, f.parity, state_.domain_args);
@@ -155,7 +162,8 @@ class TemporalSplatStage : public Stage {
   }
 
   const RestirState& state_;
-  gpu::Buffer count_, offsets_;
+  gpu::Buffer count_;
+  const gpu::Buffer& offsets_;  // RestirState::splat_offsets (the initial stage reads it too)
   gpu::Buffer splats_, target_, list_;  // reallocated in place by allocate_records (the passes then rebind)
   std::unique_ptr<Pass> project_, scan_, insert_, resample_;
   std::unique_ptr<Pass> resample_deep_;  // restir-multilayer: the active deep domains' list
