@@ -25,7 +25,8 @@ std::string u(uint32_t v) { return std::to_string(v); }
 
 std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::string& requested_method,
                                  const v1::RenderOptions& req, const v1::RenderOptions& eff,
-                                 const std::vector<v1::ImageEncoding>& encodings, const v1::SceneAnalysis& scene) {
+                                 const std::vector<v1::ImageEncoding>& encodings, const v1::SceneAnalysis& scene,
+                                 const std::optional<render::LayerCount>& measured_layers) {
   std::vector<v1::Decision> out;
   const std::string m = method.name;
   const std::string no_reuse = "method " + m + " has no reuse; used by the restir-* methods";
@@ -189,8 +190,10 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
     const std::string requested = asked(req.has_layers(), req.layers() == 0 ? "auto" : u(req.layers()));
     std::string value = "1", reason = "method " + m + " has no pixel layers; used by multi-layer methods";
     if (method.layers) {
-      value = eff.layers() == 0 ? "auto" : u(eff.layers());
-      reason = eff.layers() == 0 ? "auto: measured from the scene's visible depth complexity on its first frame (pixel-centre rays walked "
+      value = eff.layers() != 0 ? u(eff.layers()) : measured_layers ? u(measured_layers->layers) : "auto";
+      if (eff.layers() == 0 && measured_layers)
+        reason = "auto, measured on the scene's first frame: " + measured_layers->reason;
+      else reason = eff.layers() == 0 ? "auto: measured from the scene's visible depth complexity on its first frame (pixel-centre rays walked "
                                    "through their surfaces; a deep layer is kept while 10% of them reach it); every Frame's domain_init "
                                    "pass decision gives the count and the measured shares"
                                  : "requested";

@@ -1,11 +1,13 @@
 #pragma once
 // Methods and their options (docs/ARCHITECTURE.md, Methods): which exist, which are available, defaults,
 // range checks, and the choices a session makes from them and from its scene.
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "render/method_table.h"
 #include "render/renderer.h"
+#include "render/restir/layer_count.h"
 #include "service/config.h"
 #include "strata/v1/render.pb.h"
 
@@ -44,10 +46,11 @@ std::string layer_mode_name(v1::LayerMode m);
 std::string lod_mapping_name(v1::LodMapping m);
 
 // What was enabled and why, from the method (`requested_method`: as the client named it, empty for
-// the default), the options and the scene.
+// the default), the options and the scene; `measured_layers`: what `layers auto` measured on the
+// scene's first frame (render::measure_layers), when the method has layers and auto was asked.
 std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::string& requested_method,
                                  const v1::RenderOptions& requested,
                                  const v1::RenderOptions& effective, const std::vector<v1::ImageEncoding>& encodings,
-                                 const v1::SceneAnalysis& scene);
+                                 const v1::SceneAnalysis& scene, const std::optional<render::LayerCount>& measured_layers = {});
 
 }  // namespace strata::service

@@ -74,7 +74,8 @@ Session::Session(std::string name, std::shared_ptr<const scene::Scene> scene, Se
   settings_.max_depth = spec_.options.max_depth();
   settings_.seed = spec_.seed;
   settings_.restir = restir_options(spec_.options);
-  decisions_ = decide(*spec_.method, spec_.requested_method, spec_.requested, spec_.options, spec_.encodings, analysis_);
+  decisions_ = decide(*spec_.method, spec_.requested_method, spec_.requested, spec_.options, spec_.encodings, analysis_,
+                      measured_layers(spec_.options, spec_.width, spec_.height));
   frame_state_ = scene_->frame_state(0);
   idle_since_ = created_steady_;
   std::lock_guard lock(render_mu_);
@@ -196,7 +197,8 @@ void Session::apply_locked(const PendingInput& input, std::string& reset_reason)
     spec_.height = settings_.height;
     if (!input.encodings.empty()) spec_.encodings = input.encodings;
     if (options_changed)
-      decisions_ = decide(*spec_.method, spec_.requested_method, spec_.requested, spec_.options, spec_.encodings, analysis_);
+      decisions_ = decide(*spec_.method, spec_.requested_method, spec_.requested, spec_.options, spec_.encodings, analysis_,
+                          measured_layers(spec_.options, spec_.width, spec_.height));
   }
 
   if (input.animation_frame) frame_state_ = scene_->frame_state(*input.animation_frame);
@@ -250,6 +252,19 @@ RenderedFrame Session::render(PendingInput input) {
   f.held = GaugeHold(metrics_.buffered_frame_bytes, int64_t(f.result.image.rgba.size() * sizeof(float)));
   metrics_.frame_observers.notify({name_, scene_->name, settings_.method, f});
   return f;
+}
+
+const std::optional<render::LayerCount>& Session::measured_layers(const v1::RenderOptions& options, uint32_t width,
+                                                                  uint32_t height) {
+  if (!spec_.method->layers || options.layers() != 0) {
+    measured_layers_.reset();
+  } else if (!measured_layers_ || measured_width_ != width || measured_height_ != height) {
+    // 64 x 64 ray queries of the first frame (the renderer measures the same when it is created).
+    measured_layers_ = render::measure_layers(ctx_, *scene_, scene_->frame_state(0), width, height);
+    measured_width_ = width;
+    measured_height_ = height;
+  }
+  return measured_layers_;
 }
 
 const render::MethodSpec& Session::method() const {

@@ -98,6 +98,10 @@ class Session {
   const gpu::Context& ctx_;
   ServiceMetrics& metrics_;
   const v1::SceneAnalysis analysis_;
+  // `layers auto` as measured for the session's resolution (the `layers` decision's figure).
+  std::optional<render::LayerCount> measured_layers_;
+  uint32_t measured_width_ = 0, measured_height_ = 0;
+  const std::optional<render::LayerCount>& measured_layers(const v1::RenderOptions& options, uint32_t width, uint32_t height);
   const Clock::time_point created_steady_;
   const std::chrono::system_clock::time_point created_;
 

@@ -53,6 +53,21 @@ TEST_F(DomainMapTest, MapAddsUpToTheFramesDomainStatistics) {
   EXPECT_GT(deep_seen, 0u) << "carousel's moving objects hide surfaces that stay active";
 }
 
+// `layers auto`: the session's decision carries the count measured on the scene's first frame.
+TEST_F(DomainMapTest, LayersAutoDecisionSaysTheMeasuredCount) {
+  auto req = session_request("carousel", 32, 32);
+  req.clear_options();
+  req.set_method("restir-multilayer");
+  const v1::Session s = create_ok(stub(), req);
+  const v1::Decision* layers = nullptr;
+  for (const auto& d : s.decisions())
+    if (d.name() == "layers") layers = &d;
+  ASSERT_NE(layers, nullptr);
+  EXPECT_TRUE(layers->applies());
+  EXPECT_EQ(layers->value(), "3") << layers->reason();  // carousel: docs/BENCHMARKS.md, "Multi-layer reservoir splatting"
+  EXPECT_NE(layers->reason().find("measured on the scene's first frame"), std::string::npos) << layers->reason();
+}
+
 TEST_F(DomainMapTest, MethodsWithoutLayersRefuseIt) {
   auto req = session_request("cornell", 16, 16, 1, 0, {v1::IMAGE_ENCODING_RAW_RGBA16F, v1::IMAGE_ENCODING_DOMAIN_MAP});
   req.clear_options();

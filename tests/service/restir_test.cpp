@@ -214,7 +214,14 @@ TEST_F(RestirTest, SessionWithoutAMethodGetsTheDefaultAndSaysWhy) {
   expect_status(create_session(stub(), spp, &refused), StatusCode::INVALID_ARGUMENT, "or method = \"pt\"",
                 "spp 4 without a method");
 
-  // The same in an option change of a stream on the defaulted session.
+  // The same in an option change of a stream on the defaulted session, once the server has
+  // detached the first stream (its reactor finishes after the client's; under load that lags).
+  ASSERT_TRUE(wait_until(
+      [&] {
+        v1::Session now;
+        return get_session(stub(), s.name(), &now).ok() && now.state() == v1::Session::IDLE;
+      },
+      30s));
   StreamClient c(stub());
   v1::FrameInput change = frame_input(1, s.name(), 0);
   change.mutable_options()->set_spp(4);
