@@ -1,13 +1,11 @@
-// Error maps as 8-bit PNGs with the magma colour map (see report.h), written with libpng's
-// simplified API, which reports errors in the png_image struct instead of longjmp-ing.
+// Error maps as 8-bit PNGs with the magma colour map (see report.h), written by image::encode_png_rgb8.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
 
-#include <png.h>
-
+#include "image/image.h"
 #include "report/colormap.h"
 #include "report/report.h"
 
@@ -48,16 +46,6 @@ std::array<uint8_t, 3> magma(float t) {
 
 }  // namespace detail
 
-namespace {
-
-// Frees libpng's state on every path out, including exceptions.
-struct PngImageGuard {
-  png_image& image;
-  ~PngImageGuard() { png_image_free(&image); }
-};
-
-}  // namespace
-
 std::vector<uint8_t> error_map_png(const std::vector<float>& values, uint32_t width, uint32_t height,
                                    float max_value) {
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
@@ -78,24 +66,11 @@ std::vector<uint8_t> error_map_png(const std::vector<float>& values, uint32_t wi
     std::memcpy(&rgb[3 * i], c.data(), 3);
   }
 
-  png_image image;
-  std::memset(&image, 0, sizeof(image));
-  image.version = PNG_IMAGE_VERSION;
-  image.width = width;
-  image.height = height;
-  image.format = PNG_FORMAT_RGB;
-  PngImageGuard guard{image};
-  const auto stride = static_cast<png_int_32>(3 * width);
-  png_alloc_size_t bytes_size = 0;  // the first call sizes the output, the second writes it
-  if (!png_image_write_to_memory(&image, nullptr, &bytes_size, 0, rgb.data(), stride, nullptr)) {
-    throw ReportError(std::string("error_map_png: libpng failed: ") + image.message);
+  try {
+    return image::encode_png_rgb8(rgb, width, height);
+  } catch (const image::ImageError& e) {
+    throw ReportError(std::string("error_map_png: ") + e.what());
   }
-  std::vector<uint8_t> bytes(bytes_size);
-  if (!png_image_write_to_memory(&image, bytes.data(), &bytes_size, 0, rgb.data(), stride, nullptr)) {
-    throw ReportError(std::string("error_map_png: libpng failed: ") + image.message);
-  }
-  bytes.resize(bytes_size);
-  return bytes;
 }
 
 }  // namespace strata::report

@@ -36,6 +36,7 @@ std::vector<uint8_t> encode_png_rgb8(std::span<const uint8_t> rgb, uint32_t widt
   image.width = width;
   image.height = height;
   image.format = PNG_FORMAT_RGB;
+  PngImageGuard guard{image};
   const png_int_32 stride = static_cast<png_int_32>(3 * width);
   // First call sizes the output, second call writes it.
   png_alloc_size_t size = 0;

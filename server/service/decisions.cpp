@@ -189,14 +189,17 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
   {
     const std::string requested = asked(req.has_layers(), req.layers() == 0 ? "auto" : u(req.layers()));
     std::string value = "1", reason = "method " + m + " has no pixel layers; used by multi-layer methods";
-    if (method.layers) {
-      value = eff.layers() != 0 ? u(eff.layers()) : measured_layers ? u(measured_layers->layers) : "auto";
-      if (eff.layers() == 0 && measured_layers)
-        reason = "auto, measured on the scene's first frame: " + measured_layers->reason;
-      else reason = eff.layers() == 0 ? "auto: measured from the scene's visible depth complexity on its first frame (pixel-centre rays walked "
-                                   "through their surfaces; a deep layer is kept while 10% of them reach it); every Frame's domain_init "
-                                   "pass decision gives the count and the measured shares"
-                                 : "requested";
+    if (method.layers && eff.layers() != 0) {
+      value = u(eff.layers());
+      reason = "requested";
+    } else if (method.layers && measured_layers) {
+      value = u(measured_layers->layers);
+      reason = "auto, measured on the scene's first frame: " + measured_layers->reason;
+    } else if (method.layers) {
+      value = "auto";
+      reason = "auto: measured from the scene's visible depth complexity on its first frame (pixel-centre rays walked "
+               "through their surfaces; a deep layer is kept while 10% of them reach it); every Frame's domain_init "
+               "pass decision gives the count and the measured shares";
     }
     out.push_back(make("layers", requested, value, method.layers, reason));
     const std::string not_layers = "method " + m + " has no pixel layers; used by restir-multilayer";

@@ -50,7 +50,7 @@
 #define SPEC_SPATIAL_LIST 4     // restir_spatial.comp: this dispatch runs the list
 #define SPEC_SPATIAL_COMPACT 5  // restir_spatial.comp: pixels that draw neighbours at random go to that list
 #define SPEC_SPATIAL_PAIRS 6    // restir_spatial.comp: the first two neighbours are the frame's pair (restir/spatial_pairs.glsl)
-#define SPEC_LAYER_STEPPING 8   // restir-multilayer, layer_mode uniform / no-depth-ranges: layers by rank (restir/layers.glsl)
 #define SPEC_DOMAIN_LIST 7      // restir_initial.comp, restir_splat_resample.comp: this dispatch runs the active deep domains' list
+#define SPEC_LAYER_STEPPING 8   // restir-multilayer, layer_mode uniform / no-depth-ranges: layers by rank (restir/layers.glsl)
 
 #endif

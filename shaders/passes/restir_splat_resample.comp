@@ -256,7 +256,7 @@ void main() {
   // previous deep domain reached.
   if (multilayer() && layer == 0u && from_deep && (b_domains[index].flags & DOMAIN_DISOCCLUDED) != 0u) {
     atomicAdd(b_counters[COUNTER_DISOCCLUDED_COVERED], 1u);
-    atomicOr(b_domains[index].flags, DOMAIN_COVERED);  // the domain map's "covered" (layer_map.cpp)
+    atomicOr(b_domains[index].flags, DOMAIN_COVERED);  // the domain map's "covered" (render/restir/domain_map.cpp)
   }
   if (st.selected != 0u && st.selected != GRIS_NONE) atomicAdd(b_counters[COUNTER_TEMPORAL_SELECTED], 1u);
   if (st.selected == 1u) atomicAdd(b_counters[COUNTER_SPLAT_BACKUP_SELECTED], 1u);

@@ -16,7 +16,7 @@ namespace {
 // ML Sec. 5: "we define the depth range as [(1-e)t, (1+e)t] and use e = 0.01".
 constexpr float k_depth_range_epsilon = 0.01f;
 
-gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec& spec, uint32_t layers) {
+gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec& spec, uint32_t layers, bool splat_sort) {
   const RestirOptions& o = s.restir;
   gpu::GpuRestirConstants c{};
   c.initial_candidates = o.initial_candidates;
@@ -48,7 +48,6 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
   c.depth_range_epsilon = k_depth_range_epsilon;
   c.view_layer = o.view_layer;
   // Only where the splat counting sort runs before the initial stage (it says where no splat landed).
-  const bool splat_sort = spec.temporal == StageKind::temporal_splat && o.temporal;
   c.disocclusion_initial_candidates = splat_sort ? o.disocclusion_initial_candidates : 0u;
   return c;
 }
@@ -95,7 +94,7 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
   pixels = uint64_t(width) * height;
   domains = pixels * layers;
   constants = gpu::Buffer(ctx, sizeof(gpu::GpuRestirConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "restir constants");
-  gpu::GpuRestirConstants c = make_constants(settings, spec, layers);
+  gpu::GpuRestirConstants c = make_constants(settings, spec, layers, splat_sort());
   constants.upload(&c, sizeof c);
   work = device_storage(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (work)");
   history = PingPong(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (history)");

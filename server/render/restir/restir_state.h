@@ -38,12 +38,12 @@ struct RestirState {
   gpu::Buffer contribution;   // per domain f(Y) of its reservoir, then per pixel the directly seen emission
   PingPong visibility;        // per domain: the primary stage's hit (layer 0) and the representative hits of the
                               // deeper layers (GpuPrimaryHit); one entry when no primary stage runs
-  // Pixel-layer domains (restir/layer_data.h; stage domain_init). Every splat method binds them (one
-  // entry each but for restir-multilayer with k > 1 layers).
   // Splat methods: the splat counting sort's exclusive prefix sum over domains (domains + 1 entries;
   // stage temporal-splat writes it before the initial stage, which reads it: pixels no splat reached
   // take disocclusion_initial_candidates); one entry for the other methods.
   gpu::Buffer splat_offsets;
+  // Pixel-layer domains (restir/layer_data.h; stage domain_init). Every splat method binds them (one
+  // entry each but for restir-multilayer with k > 1 layers).
   PingPong domain_ranges;     // per domain: depth range, flags, occluder (GpuDomainRange)
   gpu::Buffer domain_marks;   // per domain: occluders of the representative hits propagated into it (GpuDomainMark)
   gpu::Buffer domain_list;    // the active deep domains, compacted
