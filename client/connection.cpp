@@ -44,10 +44,23 @@ RpcError::RpcError(const std::string& method, const grpc::Status& status, int)
     : std::runtime_error(method + ": " + status_code_name(status.error_code()) + ": " + status.error_message()),
       code(status.error_code()) {}
 
-std::shared_ptr<grpc::Channel> connect(const std::string& address, uint64_t max_receive_bytes, uint64_t max_send_bytes) {
+grpc::ChannelArguments channel_arguments(uint64_t max_receive_bytes, uint64_t max_send_bytes) {
   grpc::ChannelArguments args;
   args.SetMaxReceiveMessageSize(int(std::min<uint64_t>(max_receive_bytes, INT_MAX)));
   args.SetMaxSendMessageSize(int(std::min<uint64_t>(max_send_bytes, INT_MAX)));
+  // gRPC's service config (gRFC A6 retry policy); retries are on by default in gRPC >= 1.40.
+  args.SetServiceConfigJSON(R"({"methodConfig": [{
+    "name": [{"service": "strata.v1.RenderService", "method": "GetServerStatus"},
+             {"service": "strata.v1.RenderService", "method": "GetSession"},
+             {"service": "strata.v1.RenderService", "method": "ListSessions"},
+             {"service": "strata.v1.RenderService", "method": "ListScenes"}],
+    "retryPolicy": {"maxAttempts": 4, "initialBackoff": "0.1s", "maxBackoff": "1s", "backoffMultiplier": 2,
+                    "retryableStatusCodes": ["UNAVAILABLE"]}}]})");
+  return args;
+}
+
+std::shared_ptr<grpc::Channel> connect(const std::string& address, uint64_t max_receive_bytes, uint64_t max_send_bytes) {
+  auto args = channel_arguments(max_receive_bytes, max_send_bytes);
   return grpc::CreateCustomChannel(address, grpc::InsecureChannelCredentials(), args);
 }
 

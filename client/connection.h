@@ -25,6 +25,14 @@ grpc::Status as_seen_through_proxies(const grpc::Status& status);
 
 std::string status_code_name(grpc::StatusCode code);
 
+// Channel arguments every strata channel shares: the message limits, and a retry policy for the
+// read-only calls (GetServerStatus, GetSession, ListSessions, ListScenes): a connection that a proxy
+// or the network closes under such a call (UNAVAILABLE "Socket closed") is retried up to 3 more
+// times with backoff, as nothing on the server changed. Calls that change state (CreateSession,
+// Stream, DeleteSession, RenderReference) and the health check are never retried: their failures
+// are reported as they happen.
+grpc::ChannelArguments channel_arguments(uint64_t max_receive_bytes, uint64_t max_send_bytes);
+
 // An insecure channel (stratad listens on loopback by default) whose receive limit is raised to
 // `max_receive_bytes` (frames) and send limit to `max_send_bytes` (inline scenes).
 std::shared_ptr<grpc::Channel> connect(const std::string& address, uint64_t max_receive_bytes = 4u << 20,

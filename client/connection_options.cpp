@@ -1,5 +1,7 @@
 #include "connection_options.h"
 
+#include "connection.h"
+
 #include <algorithm>
 #include <climits>
 #include <fstream>
@@ -80,9 +82,7 @@ std::shared_ptr<grpc::Channel> open_channel(const ConnectionOptions& o, const st
     while (!token.empty() && std::isspace(static_cast<unsigned char>(token.back()))) token.pop_back();
     if (token.empty()) throw std::runtime_error("--auth-token-file " + o.auth_token_file + " is empty");
   }
-  grpc::ChannelArguments args;
-  args.SetMaxReceiveMessageSize(int(std::min<uint64_t>(max_receive_bytes, INT_MAX)));
-  args.SetMaxSendMessageSize(int(std::min<uint64_t>(max_send_bytes, INT_MAX)));
+  auto args = channel_arguments(max_receive_bytes, max_send_bytes);
   std::vector<std::unique_ptr<grpc::experimental::ClientInterceptorFactoryInterface>> interceptors;
   interceptors.push_back(std::make_unique<MetadataInterceptorFactory>(std::move(token), affinity_key));
   return grpc::experimental::CreateCustomChannelWithInterceptors(o.server, credentials, args, std::move(interceptors));
