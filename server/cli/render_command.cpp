@@ -124,6 +124,12 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_option("--view-layer", r.view_layer,
                   "restir-multilayer: write layer i's domain estimates instead of the image (0: the image; 0 where inactive)")
       ->capture_default_str();
+  cmd->add_option("--lod-mapping", r.lod_mapping, "ReSTIR: auto | off | uv (LoD-aware reuse, the LOD paper's vertex mapping)")
+      ->capture_default_str();
+  cmd->add_option("--lod-matching", r.lod_matching, "ReSTIR, --lod-mapping uv: greedy matching of UVs several points share (LOD Alg. 1)")
+      ->capture_default_str();
+  cmd->add_option("--lod-vertices", r.lod_vertices, "ReSTIR, --lod-mapping uv: both | primary | reconnection (LOD Fig. 5)")
+      ->capture_default_str();
   cmd->add_flag("!--no-temporal-filter", r.temporal_filter, "ReSTIR gather: history from any previous pixel (no surface test)");
   cmd->add_flag("!--no-temporal", r.temporal, "ReSTIR: no temporal reuse");
   cmd->add_flag("!--no-spatial", r.spatial, "ReSTIR: no spatial reuse");

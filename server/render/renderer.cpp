@@ -90,6 +90,10 @@ void RestirOptions::validate() const {
   require(disocclusion_initial_candidates <= RESTIR_MAX_INITIAL_CANDIDATES,
           "restir.disocclusion_initial_candidates = " + std::to_string(disocclusion_initial_candidates) + " is outside " +
               range(0u, RESTIR_MAX_INITIAL_CANDIDATES) + " (0 = initial_candidates)");
+  require(lod_mapping == "auto" || lod_mapping == "off" || lod_mapping == "uv",
+          "restir.lod_mapping = '" + lod_mapping + "' is not one of: auto, off, uv");
+  require(lod_vertices == "both" || lod_vertices == "primary" || lod_vertices == "reconnection",
+          "restir.lod_vertices = '" + lod_vertices + "' is not one of: both, primary, reconnection");
   require(view_layer < LAYERS_MAX, "restir.view_layer = " + std::to_string(view_layer) + " is outside " + range(0u, LAYERS_MAX - 1));
 }
 
@@ -100,6 +104,12 @@ Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSet
   settings_.validate();
   // Temporal reuse needs the previous frame's TLAS and instances on the device; `pt` keeps none.
   scene_ = std::make_unique<GpuScene>(ctx, scene, /*keep_history=*/method_spec(settings_.method).reuse);
+  const RestirOptions& ro = settings_.restir;
+  scene_->set_lod_mapping({.uv = ro.lod_mapping != "off",
+                           .matching = ro.lod_matching,
+                           .vertices = ro.lod_vertices == "primary"        ? gpu::LOD_VERTEX_PRIMARY
+                                       : ro.lod_vertices == "reconnection" ? gpu::LOD_VERTEX_RECONNECTION
+                                                                           : gpu::LOD_VERTEX_PRIMARY | gpu::LOD_VERTEX_RECONNECTION});
   size_t pixels = size_t(settings_.width) * settings_.height;
   constants_ = gpu::Buffer(ctx, sizeof(gpu::GpuFrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "frame constants");
   counters_ = gpu::Buffer(ctx, sizeof(uint32_t) * gpu::COUNTER_COUNT, gpu::k_storage_usage, gpu::Memory::Device, "counters");
@@ -118,6 +128,7 @@ std::map<std::string, uint64_t> Renderer::memory_bytes() const {
                                        {"image", accum_.size()},
                                        {"frame_constants_and_counters", constants_.size() + counters_.size()}};
   if (mem.history > 0) m["scene_history"] = mem.history;
+  if (mem.lod_uv > 0) m["lod_uv_space"] = mem.lod_uv;
   for (const auto& [group, bytes] : method_->memory_bytes()) m[group] += bytes;
   return m;
 }

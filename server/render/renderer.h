@@ -78,6 +78,13 @@ struct RestirOptions {
   // Splat methods: initial candidates of the pixels no temporal splat reached (0: initial_candidates);
   // the ML paper's "more initial spp" disocclusion baseline (Fig. 9).
   uint32_t disocclusion_initial_candidates = 0;
+  // LoD-aware reuse (the LOD paper; docs/ARCHITECTURE.md, "Surface resolver"): lod_mapping auto (uv
+  // where the scene has LoD groups) | off (a LoD switch refuses the shifts of its points) | uv (the
+  // vertex mapping tau); lod_matching: Alg. 1 settles UVs that several points share (else they refuse);
+  // lod_vertices both | primary | reconnection: which vertices tau maps (LOD Fig. 5 ablation).
+  std::string lod_mapping = "auto";
+  bool lod_matching = true;
+  std::string lod_vertices = "both";
   float moving_cap(const MethodSpec& method) const { return confidence_cap > 0.0f ? confidence_cap : method.confidence_cap; }
   float still_cap(const MethodSpec& method) const {
     return still_confidence_cap > 0.0f ? still_confidence_cap : moving_cap(method);

@@ -25,7 +25,17 @@ GpuScene::GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep
     slot.instances = gpu::Buffer(ctx, std::max<size_t>(16, sizeof(gpu::GpuInstance) * scene.instances.size()),
                                  gpu::k_storage_usage, gpu::Memory::Host, "instances");
   }
-  if (keep_history) swept_ = gpu::Buffer(ctx, sizeof(gpu::GpuSweptBoxes), gpu::k_storage_usage, gpu::Memory::Host, "swept boxes");
+  if (keep_history) {
+    swept_ = gpu::Buffer(ctx, sizeof(gpu::GpuSweptBoxes), gpu::k_storage_usage, gpu::Memory::Host, "swept boxes");
+    if (LodUvSpace::needed(scene)) {
+      lod_uv_ = std::make_unique<LodUvSpace>(ctx, scene, mesh_primitive_base_);
+    } else {
+      lod_off_table_ = gpu::Buffer(ctx, sizeof(gpu::GpuLodHeader) + sizeof(gpu::GpuLodInstance), gpu::k_storage_usage,
+                                   gpu::Memory::Host, "lod table");
+      const gpu::GpuLodHeader off{gpu::LOD_MODE_OFF, 0u, 0u, 0u};
+      lod_off_table_.upload(&off, sizeof off);
+    }
+  }
   // Emitter capacity: the most emissive triangles any LoD choice can produce.
   size_t capacity = 0;
   for (const auto& inst : scene.instances) {
@@ -247,6 +257,8 @@ std::vector<gpu::Binding> GpuScene::bindings(bool with_lights, bool with_history
     b.push_back({BINDING_TLAS_PREV, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR});
     b.push_back({BINDING_INSTANCES_PREV, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
     b.push_back({BINDING_SWEPT_BOXES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+    b.push_back({BINDING_LOD_UV, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR});
+    b.push_back({BINDING_LOD_TABLE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   }
   return b;
 }
@@ -272,7 +284,14 @@ void GpuScene::bind(gpu::DescriptorSet& set, bool with_lights, bool with_history
     set.bind_tlas(BINDING_TLAS_PREV, previous.tlas->handle());
     set.bind_buffer(BINDING_INSTANCES_PREV, previous.instances);
     set.bind_buffer(BINDING_SWEPT_BOXES, swept_);
+    // Without LoD groups the table says "off" and the UV TLAS is never traced: the scene's TLAS stands in.
+    set.bind_tlas(BINDING_LOD_UV, lod_uv_ ? lod_uv_->tlas().handle() : current.tlas->handle());
+    set.bind_buffer(BINDING_LOD_TABLE, lod_uv_ ? lod_uv_->table() : lod_off_table_);
   }
+}
+
+void GpuScene::set_lod_mapping(const LodMappingSettings& s) {
+  if (lod_uv_) lod_uv_->set_settings(s);
 }
 
 SceneMemory GpuScene::memory() const {
@@ -284,7 +303,8 @@ SceneMemory GpuScene::memory() const {
   m.per_frame = first.instances.size() + emitters_.size() + alias_.size();
   for (size_t i = 1; i < slots_.size(); ++i)
     m.history += slots_[i].tlas->bytes() + slots_[i].tlas->scratch_bytes() + slots_[i].instances.size();
-  if (keeps_history()) m.history += swept_.size();
+  if (keeps_history()) m.history += swept_.size() + lod_off_table_.size();
+  if (lod_uv_) m.lod_uv = lod_uv_->bytes();
   return m;
 }
 

@@ -16,6 +16,7 @@
 #include "include/frame_data.h"
 #include "include/scene_data.h"
 #include "render/emitters.h"
+#include "render/lod_uv_space.h"
 #include "scene/scene.h"
 
 namespace strata::render {
@@ -25,6 +26,7 @@ struct SceneMemory {
   VkDeviceSize acceleration = 0;   // BLAS, TLAS, scratch
   VkDeviceSize per_frame = 0;      // instances, emitters, alias table
   VkDeviceSize history = 0;        // the previous frame's slot: second TLAS, its scratch, instances
+  VkDeviceSize lod_uv = 0;         // LoD-aware reuse: UV BLASes, UV TLAS, LoD table (scenes with LoD groups, with history)
 };
 
 class GpuScene {
@@ -43,6 +45,10 @@ class GpuScene {
   // emitter tables of light sampling when `with_lights`, plus BINDING_TLAS_PREV and
   // BINDING_INSTANCES_PREV when `with_history`; bind() fills them in a set.
   static std::vector<gpu::Binding> bindings(bool with_lights, bool with_history = false);
+  // LoD-aware reuse (with history): the session's options, read by the next frame's passes. The
+  // UV-space structure exists only for scenes with LoD groups (render/lod_uv_space.h).
+  void set_lod_mapping(const LodMappingSettings& s);
+  bool has_lod_groups() const { return lod_uv_ != nullptr; }
   // Binds the current slot. With history that goes stale at the next update: use the overload below.
   void bind(gpu::DescriptorSet& set, bool with_lights) const;
   // Binds slot `parity` as the current frame and slot 1 - parity as the previous one: a method
@@ -117,6 +123,8 @@ class GpuScene {
   std::vector<uint32_t> mesh_primitive_base_;   // per mesh: first GpuPrimitive
   std::vector<std::pair<glm::vec3, glm::vec3>> mesh_bounds_;  // per mesh: object-space lower and upper corner
   gpu::Buffer swept_;                           // GpuSweptBoxes (with history)
+  std::unique_ptr<LodUvSpace> lod_uv_;          // with history, for scenes with LoD groups
+  gpu::Buffer lod_off_table_;                   // with history, without LoD groups: a header that says "off"
   std::vector<Slot> slots_;                     // 1, or 2 with history
   int parity_ = 0;
   uint32_t frames_ = 0;                         // record_update calls so far

@@ -41,6 +41,9 @@
 #define BINDING_DOMAIN_MARKS 33    // per domain: the occluders of the representative hits propagated into it (uvec2)
 #define BINDING_DOMAIN_LIST 34     // the active deep domains, compacted (domain indices)
 #define BINDING_DOMAIN_ARGS 35     // VkDispatchIndirectCommand (workgroups) and the list's length
+// LoD-aware reuse (with history; restir/lod_mapping.h, render/lod_uv_space.h)
+#define BINDING_LOD_UV 36          // the UV-space TLAS: every LoD level's triangles at their UVs, a plane per instance
+#define BINDING_LOD_TABLE 37       // GpuLodHeader, then a GpuLodInstance per instance
 
 // Specialization constants of the passes (constant_id).
 #define SPEC_THIN_LENS 0

@@ -111,7 +111,16 @@ CONST_DEF uint COUNTER_SPLAT_STEP_RAYS = 56u;       // stepping rays of the laye
 CONST_DEF uint COUNTER_SPLATS_DEEP = 57u;           // forward splats that landed in a deep domain
 CONST_DEF uint COUNTER_SPLATS_NO_LAYER = 58u;       // forward splats hidden now and in no active domain's depth range
 CONST_DEF uint COUNTER_DISOCCLUSION_BOOSTED = 59u;  // front-layer pixels no splat reached that took disocclusion_initial_candidates
-CONST_DEF uint COUNTER_COUNT = 60u;
+// LoD-aware reuse (restir/lod_mapping.h): resolutions of a point across a LoD switch, by outcome.
+CONST_DEF uint COUNTER_LOD_MAPPINGS = 60u;          // tau attempted (mapping on for that vertex kind)
+CONST_DEF uint COUNTER_LOD_UNIQUE = 61u;            // ... mapped, one point on each side
+CONST_DEF uint COUNTER_LOD_MATCHED = 62u;           // ... mapped by Alg. 1 (several points share the UV)
+CONST_DEF uint COUNTER_LOD_FAIL_OUTSIDE = 63u;      // ... no point of the target level has the UV
+CONST_DEF uint COUNTER_LOD_FAIL_AMBIGUOUS = 64u;    // ... several share it, unmatched (or matching off)
+CONST_DEF uint COUNTER_LOD_FAIL_DEGENERATE = 65u;   // ... a degenerate UV triangle
+CONST_DEF uint COUNTER_LOD_UV_RAYS = 66u;           // UV-space queries
+CONST_DEF uint COUNTER_LOD_REFUSED = 67u;           // points on another level that were not mapped (mapping off)
+CONST_DEF uint COUNTER_COUNT = 68u;
 
 STRATA_NAMESPACE_END
 

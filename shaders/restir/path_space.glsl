@@ -115,6 +115,7 @@ struct ShiftResult {
   float jacobian;    // |dy/dx| = density(x) / density(y), bounded (shift_jacobian); 0 when the shift failed.
                      // A splat multiplies in its camera and time factors (restir/splat.glsl).
   SurfacePoint x1;   // its primary hit
+  SurfacePoint xk;   // its reconnection vertex: the base path's, or tau of it across a LoD switch
   CameraSample camera;  // its camera sample: the sample's own, or the target domain's when fixed
   uint rays;         // all rays traced, replay_rays included
   // The offset path's suffix as its sample stores it (restir/reservoir.h): the base's, unless replayed.
@@ -133,6 +134,7 @@ ShiftResult shift_none(uint reason) {
   r.density = 0.0;
   r.jacobian = 0.0;
   r.x1 = surface_none();
+  r.xk = surface_none();
   r.camera.jitter = vec2(0.5);
   r.camera.lens = vec2(0.5);
   r.camera.time = 0.0;
@@ -177,6 +179,7 @@ float shift_jacobian(float base, float offset) {
 // The sample T(y) that a successful shift of y produced, as a reservoir keeps it.
 PathSample shifted_sample(PathSample y, ShiftResult s) {
   y.x1 = s.x1;
+  y.xk = s.xk;
   y.jitter = s.camera.jitter;
   y.lens = s.camera.lens;
   y.time = s.camera.time;
@@ -218,6 +221,7 @@ bool reconnection_visible(bool prev, Vertex v, vec3 d, float dist, bool to_envir
 // and the domain's frame.
 ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bool suffix_changed) {
   ShiftResult r = shift_none(SHIFT_OK);
+  r.xk = y.xk;
   r.xk_radiance = y.xk_radiance;
   r.light_pdf_end = y.light_pdf_end;
   r.suffix_density = y.suffix_density;
@@ -253,6 +257,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
   float camera_distance = 0.0;
   vec3 le = vec3(0.0);      // k = 0: emission at the end
   float pl = 0.0;           // k = 0: its light-sampling density
+  float map_jacobian = 1.0;  // LOD Eq. 6 of a mapped x_k
   Vertex v;
   for (uint j = 0u; j <= last_traced; ++j) {
     if (j > 0u) {
@@ -310,13 +315,20 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
     float dist = 0.0;
     float geometry = 1.0;  // cos theta_k / dist^2 (1 for a direction to the environment)
     float area = 1.0;
+    float xk_jacobian = 1.0;  // |d tau / dx_k| in barycentric measure (1: x_k's triangle kept)
     Vertex xk;
     bool to_environment = escaped && k == n;
     if (to_environment) {
       d = y.xk_direction;
     } else {
-      ResolvedSurface rk = resolve_surface(prev, y.xk);  // x_k moves with its object
+      // x_k moves with its object; across a LoD switch tau maps it (LOD 4.4, "LoD-aware hybrid shift").
+      ResolvedSurface rk = resolve_surface_as(prev, y.xk, LOD_VERTEX_RECONNECTION);
+#ifdef STRATA_HISTORY
+      count_lod_mapping(rk);
+#endif
       if (rk.reason != RESOLVE_OK) return shift_fail(r, SHIFT_FAIL_STALE);
+      r.xk = rk.point;
+      xk_jacobian = rk.jacobian;
       SurfaceHit sk = rk.hit;
       vec3 e = sk.position - v.position;
       float dist2 = dot(e, e);
@@ -360,7 +372,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
       tail = xk.emission * technique_weight(nee, pl_k, scatter_pdf(v, d));
     }
     if (!replay && !(luminance(tail) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
-    if (!reconnection_visible(prev, v, d, dist, to_environment, y.xk, r.rays)) return shift_fail(r, SHIFT_FAIL_OCCLUDED);
+    if (!reconnection_visible(prev, v, d, dist, to_environment, r.xk, r.rays)) return shift_fail(r, SHIFT_FAIL_OCCLUDED);
 #ifdef STRATA_HISTORY
     if (replay) {
       // The suffix in this frame (restir/suffix_replay.glsl), after the cheaper tests passed.
@@ -380,6 +392,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
 #endif
     r.f = f_prefix * fs * tail;
     r.density = density / (geometry * area);
+    map_jacobian = xk_jacobian;
   } else {
     // k = 0: the loop replayed the whole path.
     r.f = f_prefix * le * technique_weight(false, pl, pdf);
@@ -389,8 +402,9 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
   if (any(isnan(r.f)) || any(isinf(r.f)) || !(r.density > 0.0) || isinf(r.density)) return shift_fail(r, SHIFT_FAIL_JACOBIAN);
   // |dy/dx| (Lin 2022 Eq. 41 over the prefix and reconnection; a replayed suffix multiplies in
   // suffix_density(x) / suffix_density(y), restir/suffix_replay.glsl; a kept one is unchanged).
-  if (r.suffix == SUFFIX_REPLAYED) r.jacobian = shift_jacobian(y.density * y.suffix_density, r.density * r.suffix_density);
-  else r.jacobian = shift_jacobian(y.density, r.density);
+  // A mapped x_k multiplies in |d tau / dx_k| (LOD 4.4, "Jacobians"; its area part is in `area`).
+  if (r.suffix == SUFFIX_REPLAYED) r.jacobian = shift_jacobian(y.density * y.suffix_density * map_jacobian, r.density * r.suffix_density);
+  else r.jacobian = shift_jacobian(y.density * map_jacobian, r.density);
   return r;
 }
 

@@ -16,6 +16,25 @@ layout(set = 0, binding = BINDING_COUNTERS, std430) buffer Counters { uint b_cou
 layout(set = 0, binding = BINDING_RESERVOIRS_OUT, std430) buffer ReservoirsOut { PackedReservoir b_out[]; };
 layout(set = 0, binding = BINDING_CONTRIBUTION, std430) buffer Contribution { vec4 b_contribution[]; };
 
+#ifdef STRATA_HISTORY
+// Counts a surface resolution across a LoD switch (COUNTER_LOD_*).
+void count_lod_mapping(ResolvedSurface r) {
+  if (r.lod_mapping == LOD_MAPPING_NONE) return;
+  if (r.lod_mapping == LOD_FAIL_OFF) {
+    atomicAdd(b_counters[COUNTER_LOD_REFUSED], 1u);
+    return;
+  }
+  atomicAdd(b_counters[COUNTER_LOD_MAPPINGS], 1u);
+  atomicAdd(b_counters[COUNTER_LOD_UV_RAYS], r.uv_rays);
+  uint c = r.lod_mapping == LOD_MAPPED_UNIQUE    ? COUNTER_LOD_UNIQUE
+           : r.lod_mapping == LOD_MAPPED_MATCHED ? COUNTER_LOD_MATCHED
+           : r.lod_mapping == LOD_FAIL_OUTSIDE   ? COUNTER_LOD_FAIL_OUTSIDE
+           : r.lod_mapping == LOD_FAIL_AMBIGUOUS ? COUNTER_LOD_FAIL_AMBIGUOUS
+                                                 : COUNTER_LOD_FAIL_DEGENERATE;
+  atomicAdd(b_counters[c], 1u);
+}
+#endif
+
 // Per-pixel data (random streams, the visibility buffer): row-major pixel index.
 uint pixel_index(uvec2 p) { return p.y * u_frame.width + p.x; }
 bool in_image(ivec2 p) { return p.x >= 0 && p.y >= 0 && p.x < int(u_frame.width) && p.y < int(u_frame.height); }

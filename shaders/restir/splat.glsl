@@ -78,11 +78,13 @@ ShiftJob splat_prepare(bool prev, PathSample y, uint time_partition) {
     job.time_ratio = k;
   }
   ResolvedSurface x1_from = resolve_surface(!prev, y.x1);  // x_1 in the sample's own frame
-  ResolvedSurface y1_to = resolve_surface(prev, y.x1);      // y_1 in the target frame
+  ResolvedSurface y1_to = resolve_surface(prev, y.x1);      // y_1 = tau(x_1) in the target frame (LOD 4.4, "LoD-aware primary hit reprojection")
+  count_lod_mapping(y1_to);
   if (x1_from.reason != RESOLVE_OK || y1_to.reason != RESOLVE_OK) {
-    job.reason = SHIFT_FAIL_STALE;  // gone, or another LoD level
+    job.reason = SHIFT_FAIL_STALE;  // gone, or another LoD level that tau does not reach
     return job;
   }
+  job.y.x1 = y1_to.point;  // the primary ray must find y_1's triangle at the target's level
   SurfaceHit from = x1_from.hit;
   SurfaceHit to = y1_to.hit;
   GpuCamera cam_from = camera_at(!prev, y.time);

@@ -66,7 +66,7 @@ bool sample_light_in(bool prev, vec3 x, vec3 u, out LightSample ls) {
   p.triangle = e.surface.z;
   p.bary = e.surface.w != 0u ? b.yx : b;  // undo the re-winding of mirrored instances
   p.lod = instance_in(false, p.instance).lod;
-  ResolvedSurface rs = resolve_surface(true, p);
+  ResolvedSurface rs = resolve_surface_as(true, p, LOD_VERTEX_NONE);  // a light point: never mapped (its light is chosen anew)
   if (rs.reason != RESOLVE_OK) return false;
   vec3 d = rs.hit.position - x;
   float dist2 = dot(d, d);

@@ -119,6 +119,17 @@ void RestirMethod::collect(std::span<const uint32_t> c, FrameStats& s) const {
   s.reuse["spatial.shifts"] = c[COUNTER_SPATIAL_SHIFTS];
   s.reuse["spatial.selected"] = c[COUNTER_SPATIAL_SELECTED];
   s.reuse["spatial.filtered"] = c[COUNTER_SPATIAL_FILTERED];  // candidates refused by the surface filter
+  if (state_.shared.scene.has_lod_groups()) {
+    // LoD-aware reuse (restir/lod_mapping.h): points resolved across a LoD switch, by outcome.
+    s.reuse["lod.mappings"] = c[COUNTER_LOD_MAPPINGS];
+    s.reuse["lod.unique"] = c[COUNTER_LOD_UNIQUE];
+    s.reuse["lod.matched"] = c[COUNTER_LOD_MATCHED];
+    s.reuse["lod.failed_outside"] = c[COUNTER_LOD_FAIL_OUTSIDE];
+    s.reuse["lod.failed_ambiguous"] = c[COUNTER_LOD_FAIL_AMBIGUOUS];
+    s.reuse["lod.failed_degenerate"] = c[COUNTER_LOD_FAIL_DEGENERATE];
+    s.reuse["lod.uv_rays"] = c[COUNTER_LOD_UV_RAYS];
+    s.reuse["lod.refused"] = c[COUNTER_LOD_REFUSED];  // on another level and not mapped (mapping off)
+  }
   for (uint32_t r = 1; r < SHIFT_REASONS; ++r) {
     s.shift_failures[std::string("temporal.") + reasons[r]] = c[COUNTER_TEMPORAL_FAIL + r];
     s.shift_failures[std::string("spatial.") + reasons[r]] = c[COUNTER_SPATIAL_FAIL + r];
