@@ -291,6 +291,7 @@ void GpuScene::bind(gpu::DescriptorSet& set, bool with_lights, bool with_history
 }
 
 void GpuScene::set_lod_mapping(const LodMappingSettings& s) {
+  lod_mapping_on_ = s.uv;
   if (lod_uv_) lod_uv_->set_settings(s);
 }
 

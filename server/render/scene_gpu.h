@@ -49,6 +49,8 @@ class GpuScene {
   // UV-space structure exists only for scenes with LoD groups (render/lod_uv_space.h).
   void set_lod_mapping(const LodMappingSettings& s);
   bool has_lod_groups() const { return lod_uv_ != nullptr; }
+  // Passes with history compile the mapping in (SPEC_LOD_MAPPING): LoD groups and lod_mapping on.
+  bool lod_mapping_compiled() const { return lod_uv_ != nullptr && lod_mapping_on_; }
   // Binds the current slot. With history that goes stale at the next update: use the overload below.
   void bind(gpu::DescriptorSet& set, bool with_lights) const;
   // Binds slot `parity` as the current frame and slot 1 - parity as the previous one: a method
@@ -125,6 +127,7 @@ class GpuScene {
   gpu::Buffer swept_;                           // GpuSweptBoxes (with history)
   std::unique_ptr<LodUvSpace> lod_uv_;          // with history, for scenes with LoD groups
   gpu::Buffer lod_off_table_;                   // with history, without LoD groups: a header that says "off"
+  bool lod_mapping_on_ = false;
   std::vector<Slot> slots_;                     // 1, or 2 with history
   int parity_ = 0;
   uint32_t frames_ = 0;                         // record_update calls so far

@@ -55,5 +55,6 @@
 #define SPEC_SPATIAL_PAIRS 6    // restir_spatial.comp: the first two neighbours are the frame's pair (restir/spatial_pairs.glsl)
 #define SPEC_DOMAIN_LIST 7      // restir_initial.comp, restir_splat_resample.comp: this dispatch runs the active deep domains' list
 #define SPEC_LAYER_STEPPING 8   // restir-multilayer, layer_mode uniform / no-depth-ranges: layers by rank (restir/layers.glsl)
+#define SPEC_LOD_MAPPING 9      // passes with history, scenes with LoD groups and lod_mapping on: the resolver maps across LoD switches
 
 #endif

@@ -198,6 +198,9 @@ struct ResolvedSurface {
 };
 
 #ifdef STRATA_HISTORY
+// Off, the pipeline compiles without tau (lavapipe drops the branch before code generation): scenes
+// without LoD groups, and lod_mapping off, pay nothing for it.
+layout(constant_id = SPEC_LOD_MAPPING) const bool k_lod_mapping = false;
 layout(set = 0, binding = BINDING_LOD_UV) uniform accelerationStructureEXT u_lod_uv;
 layout(set = 0, binding = BINDING_LOD_TABLE, std430) readonly buffer LodTable {
   GpuLodHeader b_lod_header;
@@ -288,12 +291,17 @@ uint lod_map(SurfacePoint p, uint to_level, uint vertex_kind, OUT(SurfacePoint) 
   float uv2_from = uv_double_area(from.t0, from.t1, from.t2);
   if (!(uv2_from > 2.0 * LOD_MIN_UV_AREA)) return LOD_FAIL_DEGENERATE;
   vec2 v = lod_uv(from, p.bary);  // Phi_1(x)
-  LodPoints to_points = lod_points_at(p.instance, to_level, v, rays);
-  if (to_points.n == 0u) return LOD_FAIL_OUTSIDE;
-  if (to_points.overflow) return LOD_FAIL_AMBIGUOUS;
-  // X_1,v holds p itself (found by position: the query's barycentrics differ from p's by rounding).
-  LodPoints from_points = lod_points_at(p.instance, p.lod, v, rays);
-  if (from_points.overflow) return LOD_FAIL_AMBIGUOUS;
+  // X_2,v, then X_1,v (which holds p itself: found by position, the query's barycentrics differ from
+  // p's by rounding). One call site: lavapipe inlines a traversal per call.
+  LodPoints to_points;
+  LodPoints from_points;
+  for (uint side = 0u; side < 2u; ++side) {
+    LodPoints found = lod_points_at(p.instance, side == 0u ? to_level : p.lod, v, rays);
+    if (found.overflow) return LOD_FAIL_AMBIGUOUS;
+    if (side == 0u && found.n == 0u) return LOD_FAIL_OUTSIDE;
+    if (side == 0u) to_points = found;
+    else from_points = found;
+  }
   vec3 x = lod_position(from, p.bary);
   uint which = LOD_MAX_CANDIDATES;
   for (uint i = 0u; i < from_points.n; ++i)
@@ -337,7 +345,8 @@ ResolvedSurface resolve_surface_as(bool prev, SurfacePoint p, uint vertex_kind) 
   SurfacePoint q = p;
   if (known && inst.lod != p.lod) {
 #ifdef STRATA_HISTORY
-    r.lod_mapping = lod_map(p, inst.lod, vertex_kind, q, r.jacobian, r.uv_rays);
+    if (k_lod_mapping) r.lod_mapping = lod_map(p, inst.lod, vertex_kind, q, r.jacobian, r.uv_rays);
+    else r.lod_mapping = LOD_FAIL_OFF;
 #else
     r.lod_mapping = LOD_FAIL_OFF;  // one frame: every stored point is at the level it shows
 #endif

@@ -437,6 +437,25 @@ std::vector<Case> cases() {
     v.push_back({.name = "multilayer_two_planes" + suffix, .scene = "two-planes", .method = "restir-multilayer", .options = options,
                  .state = front_jumping, .variant = "built", .edit = two_planes_scene});
   }
+  // LoD-aware reuse (the LOD paper): every scored frame switches every LoD group between levels 0
+  // and 1, so that each temporal shift maps x_1 and x_k with tau (lod_mapping auto = uv here) and
+  // multiplies in Eq. 6. lod-cliff: one UV chart, every point maps uniquely; overlap-uv: the mirrored
+  // floor and the cube whose six faces share one UV square, where Alg. 1 matches (and, without
+  // matching, refuses) the points.
+  auto lod_switching = [](uint32_t scene_frame) {
+    return [scene_frame](const scene::Scene& s, uint32_t f) {
+      scene::FrameState st = s.frame_state(scene_frame);
+      for (size_t i = 0; i < st.lods.size(); ++i)
+        if (s.instances[i].lod_meshes.size() > 1) st.lods[i] = f % 2;
+      return st;
+    };
+  };
+  v.push_back({.name = "lod_cliff_splat", .scene = "lod-cliff", .method = "restir-splat", .frames = 3, .runs = 64,
+               .state = lod_switching(60)});
+  v.push_back({.name = "lod_overlap_uv_splat", .scene = "overlap-uv", .method = "restir-splat", .frames = 3, .runs = 64,
+               .state = lod_switching(10)});
+  v.push_back({.name = "lod_overlap_uv_splat_no_matching", .scene = "overlap-uv", .method = "restir-splat", .frames = 3,
+               .runs = 64, .options = [](render::RestirOptions& o) { o.lod_matching = false; }, .state = lod_switching(10)});
   return v;
 }
 
