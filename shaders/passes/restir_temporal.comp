@@ -62,7 +62,8 @@ bool backproject(uvec2 pixel, out Backprojection b) {
   SurfacePoint centre = primary_surface(entry);
   if (centre.instance == SURFACE_NONE) return false;
   b.centre = primary_surface_hit(entry);
-  b.before = resolve_surface(true, centre);
+  b.before = resolve_surface(true, centre);  // across a LoD switch: tau of the centre (LOD 4.4's motion vectors)
+  count_lod_mapping(b.before);
   if (b.before.reason != RESOLVE_OK) return false;
   vec3 ndc = camera_ndc(u_frame.prev_camera, b.before.hit.position);
   if (!(ndc.z > 0.0)) return false;

@@ -452,6 +452,8 @@ std::vector<Case> cases() {
   };
   v.push_back({.name = "lod_cliff_splat", .scene = "lod-cliff", .method = "restir-splat", .frames = 3, .runs = 64,
                .state = lod_switching(60)});
+  v.push_back({.name = "lod_cliff_gather", .scene = "lod-cliff", .method = "restir-gather", .frames = 3, .runs = 64,
+               .state = lod_switching(60)});
   v.push_back({.name = "lod_overlap_uv_splat", .scene = "overlap-uv", .method = "restir-splat", .frames = 3, .runs = 64,
                .state = lod_switching(10)});
   v.push_back({.name = "lod_overlap_uv_splat_no_matching", .scene = "overlap-uv", .method = "restir-splat", .frames = 3,

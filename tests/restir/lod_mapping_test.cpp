@@ -1,0 +1,120 @@
+// LoD-aware reuse (the LOD paper; shaders/include/scene_bridge.glsl, lod_map): what the mapping
+// does at a LoD switch, by outcome, and that it stays finite. The image's unbiasedness across
+// switches is in restir_unbiased_test.cpp (lod_* cases); the math in tests/unit/lod_mapping_math_test.cpp.
+// - overlap-uv (a mirrored floor, a cube whose faces share one UV square): with matching the
+//   ambiguous points are matched (LOD Alg. 1), without it they are refused (LOD Fig. 6), and with
+//   lod_mapping off every point on the other level is refused;
+// - lod-cliff (one UV chart): points map uniquely; the UV structure's memory is reported in its own
+//   group and is absent for a scene without LoD groups and for methods without history;
+// - numerics: a switch every frame with a teleporting camera, on chess and overlap-uv: all finite.
+#include <cmath>
+#include <cstdio>
+#include <functional>
+
+#include "gpu/gpu_context.h"
+#include "render/renderer.h"
+#include "scene/scene_io.h"
+
+namespace strata::test {
+namespace {
+
+// Frame `scene_frame` of the scene's animation with every LoD group at level f % 2.
+scene::FrameState switched(const scene::Scene& s, uint32_t scene_frame, uint32_t f) {
+  scene::FrameState st = s.frame_state(scene_frame);
+  for (size_t i = 0; i < st.lods.size(); ++i)
+    if (s.instances[i].lod_meshes.size() > 1) st.lods[i] = f % 2;
+  return st;
+}
+
+struct Outcome {
+  std::map<std::string, uint64_t> reuse;  // of the frame with the switch
+  std::map<std::string, uint64_t> memory;
+};
+
+Outcome render_switch(const std::string& scene_name, const std::string& method, std::function<void(render::RestirOptions&)> options) {
+  scene::Scene s = scene::builtin_scene(scene_name);
+  render::RenderSettings rs;
+  rs.width = 32;
+  rs.height = 32;
+  rs.method = method;
+  rs.max_depth = 4;
+  options(rs.restir);
+  render::Renderer renderer(gpu_context(), s, rs);
+  Outcome o;
+  for (uint32_t f = 0; f < 2; ++f) o.reuse = renderer.render(switched(s, 10, f), f).stats.reuse;
+  o.memory = renderer.memory_bytes();
+  return o;
+}
+
+class LodMapping : public GpuTest {};
+
+TEST_F(LodMapping, OverlappingUvsAreMatchedOrRefused) {
+  const Outcome matched = render_switch("overlap-uv", "restir-splat", [](render::RestirOptions&) {});
+  const Outcome unmatched = render_switch("overlap-uv", "restir-splat", [](render::RestirOptions& o) { o.lod_matching = false; });
+  const Outcome off = render_switch("overlap-uv", "restir-splat", [](render::RestirOptions& o) { o.lod_mapping = "off"; });
+  std::printf("matching: mappings %llu matched %llu unique %llu ambiguous %llu outside %llu; without: ambiguous %llu; off: refused %llu\n",
+              (unsigned long long)matched.reuse.at("lod.mappings"), (unsigned long long)matched.reuse.at("lod.matched"),
+              (unsigned long long)matched.reuse.at("lod.unique"), (unsigned long long)matched.reuse.at("lod.failed_ambiguous"),
+              (unsigned long long)matched.reuse.at("lod.failed_outside"), (unsigned long long)unmatched.reuse.at("lod.failed_ambiguous"),
+              (unsigned long long)off.reuse.at("lod.refused"));
+  // Every point of overlap-uv's two LoD groups shares its UV with another point of its level.
+  EXPECT_GT(matched.reuse.at("lod.matched"), 0u);
+  EXPECT_GT(matched.reuse.at("lod.matched"), 10 * matched.reuse.at("lod.failed_ambiguous"));
+  EXPECT_EQ(unmatched.reuse.at("lod.matched"), 0u);
+  EXPECT_EQ(unmatched.reuse.at("lod.unique"), 0u);
+  EXPECT_GT(unmatched.reuse.at("lod.failed_ambiguous"), 0u);
+  EXPECT_GT(unmatched.reuse.at("temporal.shifts"), 0u);
+  EXPECT_EQ(off.reuse.at("lod.mappings"), 0u);
+  EXPECT_EQ(off.reuse.at("lod.uv_rays"), 0u);
+  EXPECT_GT(off.reuse.at("lod.refused"), 0u);
+  // Two UV queries per mapping (X_2,v, then X_1,v) unless X_2,v is empty.
+  EXPECT_LE(matched.reuse.at("lod.uv_rays"), 2 * matched.reuse.at("lod.mappings"));
+  EXPECT_GE(matched.reuse.at("lod.uv_rays"), matched.reuse.at("lod.mappings"));
+  EXPECT_GT(matched.memory.at("lod_uv_space"), 0u);
+}
+
+TEST_F(LodMapping, OneChartMapsUniquelyAndOnlyLodScenesPayForIt) {
+  const Outcome cliff = render_switch("lod-cliff", "restir-splat", [](render::RestirOptions&) {});
+  std::printf("lod-cliff: mappings %llu unique %llu outside %llu degenerate %llu\n", (unsigned long long)cliff.reuse.at("lod.mappings"),
+              (unsigned long long)cliff.reuse.at("lod.unique"), (unsigned long long)cliff.reuse.at("lod.failed_outside"),
+              (unsigned long long)cliff.reuse.at("lod.failed_degenerate"));
+  EXPECT_GT(cliff.reuse.at("lod.unique"), 0u);
+  EXPECT_EQ(cliff.reuse.at("lod.matched"), 0u);
+  EXPECT_GE(cliff.reuse.at("lod.unique"), cliff.reuse.at("lod.mappings") * 99 / 100);
+  EXPECT_GT(cliff.memory.at("lod_uv_space"), 0u);
+
+  const Outcome cornell = render_switch("cornell", "restir-splat", [](render::RestirOptions&) {});
+  EXPECT_FALSE(cornell.reuse.contains("lod.mappings")) << "a scene without LoD groups reports no LoD statistics";
+  EXPECT_FALSE(cornell.memory.contains("lod_uv_space"));
+  const Outcome pt = render_switch("lod-cliff", "pt", [](render::RestirOptions&) {});
+  EXPECT_FALSE(pt.memory.contains("lod_uv_space")) << "pt keeps no history: nothing to map";
+}
+
+// A LoD switch every frame while the camera jumps between far-apart places (every temporal shift
+// disoccluded or grazing), on UV seams (overlap-uv's mirror line, chess's lathe seams).
+TEST_F(LodMapping, SwitchEveryFrameWithTeleportingCameraStaysFinite) {
+  for (const char* name : {"chess", "overlap-uv"}) {
+    for (const char* method : {"restir-splat", "restir-gather"}) {
+      SCOPED_TRACE(std::string(name) + " " + method);
+      scene::Scene s = scene::builtin_scene(name);
+      render::RenderSettings rs;
+      rs.width = 24;
+      rs.height = 24;
+      rs.method = method;
+      rs.max_depth = 4;
+      render::Renderer renderer(gpu_context(), s, rs);
+      uint64_t mapped = 0;
+      for (uint32_t f = 0; f < 4; ++f) {
+        scene::FrameState st = switched(s, 10, f);
+        if (f % 2 == 1) st.camera.position += glm::vec3(3.0f, 1.0f, -2.0f);
+        auto r = renderer.render(st, f);
+        for (float v : r.image.rgba) ASSERT_TRUE(std::isfinite(v)) << "frame " << f;
+        mapped += r.stats.reuse.at("lod.mappings");
+      }
+      EXPECT_GT(mapped, 0u);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace strata::test
