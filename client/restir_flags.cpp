@@ -33,6 +33,12 @@ void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
   cmd->add_option("--layer-mode", r.layer_mode,
                   "restir-multilayer: active | uniform | no-depth-ranges (the ML paper's validation variants; default active)")
       ->check(CLI::IsMember({"active", "uniform", "no-depth-ranges"}));
+  cmd->add_option("--lod-mapping", r.lod_mapping, "ReSTIR: auto | off | uv (LoD-aware reuse, the LOD paper's vertex mapping; default auto)")
+      ->check(CLI::IsMember({"auto", "off", "uv"}));
+  cmd->add_option("--lod-matching", r.lod_matching,
+                  "ReSTIR, --lod-mapping uv: match UVs that several points share (LOD Alg. 1; true | false; default true)");
+  cmd->add_option("--lod-vertices", r.lod_vertices, "ReSTIR, --lod-mapping uv: both | primary | reconnection (LOD Fig. 5; default both)")
+      ->check(CLI::IsMember({"both", "primary", "reconnection"}));
   cmd->add_flag("--no-temporal", r.no_temporal, "ReSTIR: no temporal reuse");
   cmd->add_flag("--no-temporal-filter", r.no_temporal_filter, "ReSTIR gather: take history from any previous pixel (no surface test)");
   cmd->add_flag("--no-spatial", r.no_spatial, "ReSTIR: no spatial reuse");
@@ -65,6 +71,9 @@ std::string restir_flags_text(const RestirFlags& r) {
   if (r.layers) add("--layers", std::to_string(*r.layers));
   if (r.hole_fill_radius) add("--hole-fill-radius", std::to_string(*r.hole_fill_radius));
   if (!r.layer_mode.empty()) add("--layer-mode", r.layer_mode);
+  if (!r.lod_mapping.empty()) add("--lod-mapping", r.lod_mapping);
+  if (r.lod_matching) add("--lod-matching", *r.lod_matching ? "true" : "false");
+  if (!r.lod_vertices.empty()) add("--lod-vertices", r.lod_vertices);
   if (r.no_temporal) add("--no-temporal", "");
   if (r.no_temporal_filter) add("--no-temporal-filter", "");
   if (r.no_spatial) add("--no-spatial", "");
@@ -101,6 +110,16 @@ void set_restir_options(const RestirFlags& r, v1::RenderOptions& o) {
   else if (r.layer_mode == "no-depth-ranges") o.set_layer_mode(v1::LAYER_MODE_NO_DEPTH_RANGES);
   else if (!r.layer_mode.empty())
     throw std::runtime_error("--layer-mode: '" + r.layer_mode + "' is not one of active, uniform, no-depth-ranges");
+  if (r.lod_mapping == "auto") o.set_lod_mapping(v1::LOD_MAPPING_AUTO);
+  else if (r.lod_mapping == "off") o.set_lod_mapping(v1::LOD_MAPPING_OFF);
+  else if (r.lod_mapping == "uv") o.set_lod_mapping(v1::LOD_MAPPING_UV);
+  else if (!r.lod_mapping.empty()) throw std::runtime_error("--lod-mapping: '" + r.lod_mapping + "' is not one of auto, off, uv");
+  if (r.lod_matching) o.set_lod_matching(*r.lod_matching);
+  if (r.lod_vertices == "both") o.set_lod_vertices(v1::LOD_VERTICES_BOTH);
+  else if (r.lod_vertices == "primary") o.set_lod_vertices(v1::LOD_VERTICES_PRIMARY);
+  else if (r.lod_vertices == "reconnection") o.set_lod_vertices(v1::LOD_VERTICES_RECONNECTION);
+  else if (!r.lod_vertices.empty())
+    throw std::runtime_error("--lod-vertices: '" + r.lod_vertices + "' is not one of both, primary, reconnection");
   if (r.no_temporal) o.set_temporal_reuse(false);
   if (r.no_temporal_filter) o.set_temporal_filter(false);
   if (r.no_spatial) o.set_spatial_reuse(false);

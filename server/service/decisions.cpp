@@ -179,12 +179,23 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
     const auto mode = eff.lod_mapping();
     const std::string requested = asked(req.has_lod_mapping(), lod_mapping_name(req.lod_mapping()));
     const std::string groups = std::to_string(scene.lod_groups()) + " instance(s) with LoD levels";
-    // No method maps vertices across LoD levels yet (the LOD paper's UV mapping belongs in the
-    // surface resolver): a switch restarts the history of the switched instance, whatever is asked.
-    std::string reason = !method.reuse ? no_reuse + " (the scene has " + groups + ")"
-                         : "no LoD mapping is implemented yet: a LoD switch restarts the switched instance's history (the "
-                           "scene has " + groups + (mode == v1::LOD_MAPPING_OFF ? ")" : "; " + lod_mapping_name(mode) + " requested)");
-    out.push_back(make("lod_mapping", requested, "off", false, reason));
+    // The LOD paper's vertex mapping tau, inside the surface resolver: a UV-space structure per LoD
+    // group, built only for scenes that have one and methods that keep history.
+    const bool uv = method.reuse && temporal && scene.lod_groups() > 0 && mode != v1::LOD_MAPPING_OFF;
+    std::string reason = !method.reuse                   ? no_reuse + " (the scene has " + groups + ")"
+                         : !temporal                     ? no_temporal
+                         : scene.lod_groups() == 0       ? "the scene has no instance with LoD levels: nothing switches"
+                         : mode == v1::LOD_MAPPING_OFF   ? "a LoD switch refuses the temporal shifts of the switched instance's points (the scene has " + groups + ")"
+                                                         : "points map across LoD switches through the shared UV parametrisation (LOD paper; the scene has " + groups + ")";
+    out.push_back(make("lod_mapping", requested, uv ? "uv" : "off", uv, reason));
+    out.push_back(make("lod_matching", asked(req.has_lod_matching(), req.lod_matching() ? "true" : "false"),
+                       eff.lod_matching() ? "true" : "false", uv,
+                       !uv ? "used by lod_mapping uv"
+                       : eff.lod_matching() ? "UVs that several points share are matched by world distance (LOD Alg. 1)"
+                                            : "UVs that several points share refuse the shift (LOD Fig. 6 without matching)"));
+    out.push_back(make("lod_vertices", asked(req.has_lod_vertices(), lod_vertices_name(req.lod_vertices())),
+                       lod_vertices_name(eff.lod_vertices()), uv,
+                       !uv ? "used by lod_mapping uv" : "the path vertices tau maps (LOD Fig. 5 ablation)"));
   }
   {
     const std::string requested = asked(req.has_layers(), req.layers() == 0 ? "auto" : u(req.layers()));

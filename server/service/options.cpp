@@ -49,6 +49,8 @@ void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, cons
                              "LOD_MAPPING_AUTO, LOD_MAPPING_OFF, LOD_MAPPING_UV");
   check_range(o.has_layers(), o.layers(), 0, gpu::LAYERS_MAX, p + "layers", "0 = auto");
   check_range(o.has_hole_fill_radius(), o.hole_fill_radius(), 0, gpu::RESTIR_MAX_HOLE_FILL_RADIUS, p + "hole_fill_radius", "0 = off");
+  check_enum(o.has_lod_vertices(), o.lod_vertices(), &v1::LodVertices_IsValid, p + "lod_vertices",
+             "LOD_VERTICES_BOTH, LOD_VERTICES_PRIMARY, LOD_VERTICES_RECONNECTION");
   check_enum(o.has_layer_mode(), o.layer_mode(), &v1::LayerMode_IsValid, p + "layer_mode",
              "LAYER_MODE_ACTIVE, LAYER_MODE_UNIFORM, LAYER_MODE_NO_DEPTH_RANGES");
   // The ranges of shaders/restir/restir_limits.h, which render::RestirOptions::validate checks too.
@@ -113,6 +115,9 @@ render::RestirOptions restir_options(const v1::RenderOptions& e) {
   r.layers = e.layers();
   r.hole_fill_radius = e.hole_fill_radius();
   r.layer_mode = layer_mode_name(e.layer_mode());
+  r.lod_mapping = lod_mapping_name(e.lod_mapping());
+  r.lod_matching = e.lod_matching();
+  r.lod_vertices = lod_vertices_name(e.lod_vertices());
   return r;
 }
 
@@ -122,6 +127,7 @@ void normalize(v1::RenderOptions& o) {
   if (o.suffix() == v1::SUFFIX_UNSPECIFIED) o.set_suffix(v1::SUFFIX_AUTO);
   if (o.lod_mapping() == v1::LOD_MAPPING_UNSPECIFIED) o.set_lod_mapping(v1::LOD_MAPPING_AUTO);
   if (o.layer_mode() == v1::LAYER_MODE_UNSPECIFIED) o.set_layer_mode(v1::LAYER_MODE_ACTIVE);
+  if (o.lod_vertices() == v1::LOD_VERTICES_UNSPECIFIED) o.set_lod_vertices(v1::LOD_VERTICES_BOTH);
 }
 
 v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const render::MethodSpec& method, const ServiceLimits& limits,
@@ -152,6 +158,8 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const render
   o.set_layers(restir.layers);
   o.set_hole_fill_radius(restir.hole_fill_radius);
   o.set_layer_mode(v1::LAYER_MODE_ACTIVE);
+  o.set_lod_matching(restir.lod_matching);
+  o.set_lod_vertices(v1::LOD_VERTICES_BOTH);
   o.set_splats_per_frame(1);
   o.set_exposure(0.0f);
   o.MergeFrom(requested);  // proto3 optional: only fields that are set overwrite
@@ -174,6 +182,13 @@ std::string layer_mode_name(v1::LayerMode m) {
     case v1::LAYER_MODE_UNIFORM: return "uniform";
     case v1::LAYER_MODE_NO_DEPTH_RANGES: return "no-depth-ranges";
     default: return "active";
+  }
+}
+std::string lod_vertices_name(v1::LodVertices v) {
+  switch (v) {
+    case v1::LOD_VERTICES_PRIMARY: return "primary";
+    case v1::LOD_VERTICES_RECONNECTION: return "reconnection";
+    default: return "both";
   }
 }
 std::string lod_mapping_name(v1::LodMapping m) {

@@ -43,6 +43,7 @@ std::string shift_name(v1::Shift s);
 std::string suffix_name(v1::Suffix s);
 std::string mis_name(v1::Mis m);
 std::string layer_mode_name(v1::LayerMode m);
+std::string lod_vertices_name(v1::LodVertices v);
 std::string lod_mapping_name(v1::LodMapping m);
 
 // What was enabled and why, from the method (`requested_method`: as the client named it, empty for

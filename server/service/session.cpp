@@ -43,6 +43,9 @@ std::vector<std::string> restir_changes(const render::RestirOptions& a, const re
   field("splats_per_frame", a.splats_per_frame, b.splats_per_frame);
   field("disocclusion_spatial_neighbors", a.disocclusion_spatial_neighbors, b.disocclusion_spatial_neighbors);
   field("disocclusion_initial_candidates", a.disocclusion_initial_candidates, b.disocclusion_initial_candidates);
+  field("lod_mapping", a.lod_mapping, b.lod_mapping);
+  field("lod_matching", a.lod_matching, b.lod_matching);
+  field("lod_vertices", a.lod_vertices, b.lod_vertices);
   field("direct_strata", a.direct_strata, b.direct_strata);
   field("albedo_strata", a.albedo_strata, b.albedo_strata);
   field("temporal_filter", a.temporal_filter, b.temporal_filter);
