@@ -141,7 +141,9 @@ TEST_F(RestirTest, OptionChangesRecreateTheGpuStateAndSayWhy) {
   EXPECT_FALSE(decision(s, "spatial_radius")->applies()) << "spatial reuse is off";
   EXPECT_TRUE(decision(s, "confidence_cap")->applies());
 
-  StreamClient c(stub());
+  // Each option change compiles the passes it newly needs: from a fresh clone (an empty shader
+  // cache) on a loaded 2-core machine that took more than the default 60 s once.
+  StreamClient c(stub(), 300s);
   ASSERT_TRUE(c.send(frame_input(1, s.name(), 0)));
   auto f1 = c.read();
   ASSERT_TRUE(f1);
