@@ -31,13 +31,18 @@ struct Outcome {
   std::map<std::string, uint64_t> memory;
 };
 
-Outcome render_switch(const std::string& scene_name, const std::string& method, std::function<void(render::RestirOptions&)> options) {
-  scene::Scene s = scene::builtin_scene(scene_name);
+render::RenderSettings settings(const std::string& method, uint32_t size) {
   render::RenderSettings rs;
-  rs.width = 32;
-  rs.height = 32;
+  rs.width = size;
+  rs.height = size;
   rs.method = method;
   rs.max_depth = 4;
+  return rs;
+}
+
+Outcome render_switch(const std::string& scene_name, const std::string& method, std::function<void(render::RestirOptions&)> options) {
+  scene::Scene s = scene::builtin_scene(scene_name);
+  render::RenderSettings rs = settings(method, 32);
   options(rs.restir);
   render::Renderer renderer(gpu_context(), s, rs);
   Outcome o;
@@ -97,12 +102,7 @@ TEST_F(LodMapping, SwitchEveryFrameWithTeleportingCameraStaysFinite) {
     for (const char* method : {"restir-splat", "restir-gather"}) {
       SCOPED_TRACE(std::string(name) + " " + method);
       scene::Scene s = scene::builtin_scene(name);
-      render::RenderSettings rs;
-      rs.width = 24;
-      rs.height = 24;
-      rs.method = method;
-      rs.max_depth = 4;
-      render::Renderer renderer(gpu_context(), s, rs);
+      render::Renderer renderer(gpu_context(), s, settings(method, 24));
       uint64_t mapped = 0;
       for (uint32_t f = 0; f < 4; ++f) {
         scene::FrameState st = switched(s, 10, f);

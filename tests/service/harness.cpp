@@ -223,4 +223,10 @@ bool wait_until(const std::function<bool()>& done, std::chrono::milliseconds tim
   return true;
 }
 
+const v1::Decision* decision(const v1::Session& s, const std::string& name) {
+  for (const auto& d : s.decisions())
+    if (d.name() == name) return &d;
+  return nullptr;
+}
+
 }  // namespace strata::test

@@ -60,6 +60,8 @@ v1::CreateSessionRequest session_request(const std::string& builtin, uint32_t wi
                                          uint32_t seed = 0,
                                          std::vector<v1::ImageEncoding> encodings = {v1::IMAGE_ENCODING_RAW_RGBA16F});
 grpc::Status create_session(v1::RenderService::Stub& stub, const v1::CreateSessionRequest& req, v1::Session* out);
+// The session's decision called `name` (nullptr when it has none).
+const v1::Decision* decision(const v1::Session& s, const std::string& name);
 // Fails the test (and returns an empty session) when creation fails.
 v1::Session create_ok(v1::RenderService::Stub& stub, const v1::CreateSessionRequest& req);
 grpc::Status get_session(v1::RenderService::Stub& stub, const std::string& name, v1::Session* out);

@@ -11,12 +11,6 @@ namespace {
 
 using LifecycleTest = ServiceTest;
 
-const v1::Decision* decision(const v1::Session& s, const std::string& name) {
-  for (const auto& d : s.decisions())
-    if (d.name() == name) return &d;
-  return nullptr;
-}
-
 TEST_F(LifecycleTest, CreateReportsAnalysisDecisionsAndMemory) {
   auto req = session_request("cornell", 32, 24, 2, 7);
   req.mutable_options()->set_layers(3);

@@ -8,12 +8,6 @@ namespace {
 
 using LodOptionsTest = ServiceTest;
 
-const v1::Decision* decision(const v1::Session& s, const std::string& name) {
-  for (const auto& d : s.decisions())
-    if (d.name() == name) return &d;
-  return nullptr;
-}
-
 v1::CreateSessionRequest request(const std::string& scene, const std::string& method) {
   auto req = session_request(scene, 16, 16);
   req.set_method(method);

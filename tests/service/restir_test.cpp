@@ -14,12 +14,6 @@ namespace {
 using grpc::StatusCode;
 using RestirTest = ServiceTest;
 
-const v1::Decision* decision(const v1::Session& s, const std::string& name) {
-  for (const auto& d : s.decisions())
-    if (d.name() == name) return &d;
-  return nullptr;
-}
-
 v1::CreateSessionRequest restir_request(const std::string& method, uint32_t width = 16, uint32_t height = 16) {
   auto r = session_request("cornell", width, height);
   r.clear_options();  // the default spp (1) is what the restir-* methods take

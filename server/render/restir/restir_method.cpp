@@ -1,5 +1,7 @@
 #include "render/restir/restir_method.h"
 
+#include <iterator>
+
 #include "include/frame_data.h"
 #include "render/restir/stages.h"
 #include "restir/reservoir.h"
@@ -121,14 +123,11 @@ void RestirMethod::collect(std::span<const uint32_t> c, FrameStats& s) const {
   s.reuse["spatial.filtered"] = c[COUNTER_SPATIAL_FILTERED];  // candidates refused by the surface filter
   if (state_.shared.scene.has_lod_groups()) {
     // LoD-aware reuse (restir/lod_mapping.h): points resolved across a LoD switch, by outcome.
-    s.reuse["lod.mappings"] = c[COUNTER_LOD_MAPPINGS];
-    s.reuse["lod.unique"] = c[COUNTER_LOD_UNIQUE];
-    s.reuse["lod.matched"] = c[COUNTER_LOD_MATCHED];
-    s.reuse["lod.failed_outside"] = c[COUNTER_LOD_FAIL_OUTSIDE];
-    s.reuse["lod.failed_ambiguous"] = c[COUNTER_LOD_FAIL_AMBIGUOUS];
-    s.reuse["lod.failed_degenerate"] = c[COUNTER_LOD_FAIL_DEGENERATE];
-    s.reuse["lod.uv_rays"] = c[COUNTER_LOD_UV_RAYS];
-    s.reuse["lod.refused"] = c[COUNTER_LOD_REFUSED];  // on another level and not mapped (mapping off)
+    // The COUNTER_LOD_* run in this order (shaders/include/frame_data.h); "refused": on another
+    // level and not mapped (mapping off).
+    static const char* lod[] = {"mappings", "unique", "matched", "failed_outside", "failed_ambiguous", "failed_degenerate", "uv_rays", "refused"};
+    static_assert(COUNTER_LOD_REFUSED - COUNTER_LOD_MAPPINGS + 1 == std::size(lod));
+    for (uint32_t i = 0; i < std::size(lod); ++i) s.reuse[std::string("lod.") + lod[i]] = c[COUNTER_LOD_MAPPINGS + i];
   }
   for (uint32_t r = 1; r < SHIFT_REASONS; ++r) {
     s.shift_failures[std::string("temporal.") + reasons[r]] = c[COUNTER_TEMPORAL_FAIL + r];
