@@ -4,7 +4,7 @@
 // - overlap-uv (a mirrored floor, a cube whose faces share one UV square): with matching the
 //   ambiguous points are matched (LOD Alg. 1), without it they are refused (LOD Fig. 6), and with
 //   lod_mapping off every point on the other level is refused;
-// - lod-cliff (one UV chart): points map uniquely; the UV structure's memory is reported in its own
+// - lod-cliff (one UV chart): points map uniquely; chess (lathe seams): nine in ten map or better; the UV structure's memory is reported in its own
 //   group and is absent for a scene without LoD groups and for methods without history;
 // - numerics: a switch every frame with a teleporting camera, on chess and overlap-uv: all finite.
 #include <cmath>
@@ -93,6 +93,21 @@ TEST_F(LodMapping, OneChartMapsUniquelyAndOnlyLodScenesPayForIt) {
   EXPECT_FALSE(cornell.memory.contains("lod_uv_space"));
   const Outcome pt = render_switch("lod-cliff", "pt", [](render::RestirOptions&) {});
   EXPECT_FALSE(pt.memory.contains("lod_uv_space")) << "pt keeps no history: nothing to map";
+}
+
+// chess: lathed pieces whose charts close on a seam, three levels from make_lod_chain. Both shift
+// directions map x_1 at every switch (the restir_unbiased lod_chess_* cases rely on it).
+TEST_F(LodMapping, LathedPiecesMapAtEverySwitch) {
+  for (const char* method : {"restir-gather", "restir-splat"}) {
+    const Outcome chess = render_switch("chess", method, [](render::RestirOptions&) {});
+    const uint64_t mapped = chess.reuse.at("lod.unique") + chess.reuse.at("lod.matched");
+    std::printf("chess %s: mappings %llu mapped %llu outside %llu ambiguous %llu degenerate %llu\n", method,
+                (unsigned long long)chess.reuse.at("lod.mappings"), (unsigned long long)mapped,
+                (unsigned long long)chess.reuse.at("lod.failed_outside"), (unsigned long long)chess.reuse.at("lod.failed_ambiguous"),
+                (unsigned long long)chess.reuse.at("lod.failed_degenerate"));
+    EXPECT_GT(chess.reuse.at("lod.mappings"), 0u) << method;
+    EXPECT_GE(mapped, chess.reuse.at("lod.mappings") * 9 / 10) << method;
+  }
 }
 
 // A LoD switch every frame while the camera jumps between far-apart places (every temporal shift

@@ -64,6 +64,7 @@ BiasReport compare_to_reference(const RunningImage& method, const RunningImage& 
       double rounding = 1e-6 * std::max(std::abs(m), std::abs(f));
       double se = std::sqrt(ms * ms + fs * fs + rounding * rounding);
       double z = se > 0.0 ? std::abs(m - f) / se : (m == f ? 0.0 : INFINITY);
+      if (se > 0.0) r.reference_share += fs * fs / (se * se) / double(r.blocks);
       if (z > r.max_abs_block_z) {
         r.max_abs_block_z = z;
         r.worst_block_x = bx;
@@ -86,7 +87,7 @@ std::string BiasReport::describe() const {
   std::ostringstream os;
   os << "blocks " << blocks << ", max |z| " << max_abs_block_z << " at block (" << worst_block_x << ", " << worst_block_y
      << "), threshold " << z_threshold << "; image mean " << method_mean << " vs reference " << reference_mean
-     << " (relative bias " << relative_bias << ", z " << image_z << ")";
+     << " (relative bias " << relative_bias << ", z " << image_z << "); reference's variance share " << reference_share;
   return os.str();
 }
 

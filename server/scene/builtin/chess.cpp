@@ -1,7 +1,8 @@
 // chess: a 4 m x 4 m board (8 x 8 squares in two materials, on a frame) with three high-poly
 // pieces turned on a lathe: a pawn, a queen and a rook with six crenellations. Each piece has
 // three LoD levels from make_lod_chain (about 1, 1/4, 1/16 of its triangles); UVs are
-// u = angle / 2pi, v = profile parameter, with the seam vertices duplicated.
+// u = angle / 2pi, v = profile parameter, with the seam vertices duplicated (the rook's body in
+// v < 0.75, its merlons' faces in cells above: no two points share a UV).
 // Light: a 1.5 m x 1.5 m area light 4 m above the board (radiance 12) and a dim environment.
 // Animation: the pawn slides two squares, the queen slides diagonally while turning 45 degrees,
 // the rook slides and spins; the camera orbits 40 degrees. LoD schedule: the rook changes level
@@ -125,12 +126,22 @@ Primitive rook(uint32_t material) {
                   line({0.15f, 0.4f}, {0.1f, 0.4f}, 2), line({0.1f, 0.4f}, {0.1f, 0.37f}, 2),
                   line({0.1f, 0.37f}, {0, 0.37f}, 3)}),
             kSegments, material);
-  // Six merlons standing on the rim.
+  // Six merlons standing on the rim. Every point keeps a UV of its own (tau, LOD 4.2, finds a point's
+  // images through its UV): the body's chart takes v in [0, 0.75], and the merlons' 36 faces, which
+  // box() lays out on one shared unit square, get cells of a 12 x 3 strip above it.
+  for (glm::vec2& uv : body.uvs) uv.y *= 0.75f;
   for (int k = 0; k < 6; ++k) {
     const float angle = 2.0f * kPi * static_cast<float>(k) / 6.0f;
     glm::mat4 m = glm::rotate(glm::mat4(1.0f), angle, glm::vec3(0, 1, 0));
     m = glm::translate(m, {0.125f, 0.43f, 0.0f});
-    append(body, transformed(box({0.025f, 0.03f, 0.035f}, material, 4), m));
+    Primitive merlon = transformed(box({0.025f, 0.03f, 0.035f}, material, 4), m);
+    const size_t per_face = merlon.uvs.size() / 6;
+    for (size_t i = 0; i < merlon.uvs.size(); ++i) {
+      const size_t cell = static_cast<size_t>(k) * 6 + i / per_face;
+      const glm::vec2 origin(static_cast<float>(cell % 12) / 12.0f, 0.77f + 0.08f * static_cast<float>(cell / 12));
+      merlon.uvs[i] = origin + merlon.uvs[i] * glm::vec2(1.0f / 12.0f - 0.01f, 0.07f);
+    }
+    append(body, merlon);
   }
   return body;
 }
