@@ -1,6 +1,9 @@
 #include "gpu/pipeline.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 
 #include "embedded_shaders.h"
@@ -54,7 +57,13 @@ ComputePipeline::ComputePipeline(const Context& ctx, std::string shader, std::sp
     ci.stage.pName = "main";
     ci.stage.pSpecializationInfo = entries.empty() ? nullptr : &si;
     ci.layout = o->layout;
+    const auto start = std::chrono::steady_clock::now();
     VkResult r = vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &o->pipeline);
+    // STRATA_LOG_PIPELINES=1: each compile with its time (what a cold shader cache costs, per variant).
+    static const bool log = std::getenv("STRATA_LOG_PIPELINES") != nullptr;
+    if (log)
+      std::fprintf(stderr, "pipeline %8.1f ms  %s\n",
+                   std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(), key.c_str());
     vkDestroyShaderModule(ctx.device(), module, nullptr);
     check(r, ("vkCreateComputePipelines(" + name_ + ")").c_str());
     return o;

@@ -153,7 +153,7 @@ TEST(CliTest, StrataStreamSendsRestirOptionsAndLogsReuse) {
   const auto spp = run_process({strata_path(), "stream", "--server", daemon.address(), "--scene", "cornell", "--method",
                                 "restir-gather", "--spp", "4", "--width", "16", "--height", "16", "--frames", "1", "--out",
                                 (dir.path / "spp").string()},
-                               60s);
+                               k_render_deadline);
   EXPECT_NE(spp.exit_code, 0);
   EXPECT_NE(spp.output.find("CreateSession: INVALID_ARGUMENT: options.spp = 4"), std::string::npos) << spp.output;
 }
@@ -163,7 +163,7 @@ TEST(CliTest, StrataStreamReportsTheServersError) {
   Daemon daemon;
   auto args = stream_args(daemon.address(), dir.path / "out");
   args[5] = "no-such-scene";
-  const auto r = run_process(args, 60s);
+  const auto r = run_process(args, k_render_deadline);
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("CreateSession: INVALID_ARGUMENT: scene.builtin = 'no-such-scene' is not a built-in scene"),
             std::string::npos)
@@ -173,7 +173,7 @@ TEST(CliTest, StrataStreamReportsTheServersError) {
   std::ofstream(bad) << R"({"frames": [{"camera": {"position": {"x": "far"}}}]})";
   auto scripted = stream_args(daemon.address(), dir.path / "out2");
   scripted.insert(scripted.end(), {"--camera-path", bad.string()});
-  const auto s = run_process(scripted, 60s);
+  const auto s = run_process(scripted, k_render_deadline);
   EXPECT_NE(s.exit_code, 0);
   EXPECT_NE(s.output.find("frames[0]"), std::string::npos) << s.output;
 }

@@ -82,7 +82,7 @@ TEST(EvalCameraPathTest, BadCameraPathsAndShuttersAreRefusedBeforeAnyWork) {
   const std::string nowhere = "127.0.0.1:1";  // never reached: the checks come first
   const fs::path out = dir.path / "out";
   auto refused = [&](const std::vector<std::string>& args, const std::string& message) {
-    const auto r = run_process(args, 60s);
+    const auto r = run_process(args, k_render_deadline);
     EXPECT_NE(r.exit_code, 0) << message;
     EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
   };

@@ -158,21 +158,21 @@ TEST(EvalTest, UnknownScenesAndMethodsAreRefusedBeforeAnyWork) {
   Daemon daemon({"--reference-cache", (dir.path / "cache").string()});
   auto args = eval_args(daemon.address(), dir.path / "out");
   args[5] = "cornell,no-such-scene";
-  const auto scene = run_process(args, 60s);
+  const auto scene = run_process(args, k_render_deadline);
   EXPECT_NE(scene.exit_code, 0);
   EXPECT_NE(scene.output.find("--scenes: 'no-such-scene' is not a scene of"), std::string::npos) << scene.output;
   EXPECT_NE(scene.output.find("cornell"), std::string::npos) << scene.output;
 
   args = eval_args(daemon.address(), dir.path / "out");
   args[7] = "pt,magic";
-  const auto method = run_process(args, 60s);
+  const auto method = run_process(args, k_render_deadline);
   EXPECT_NE(method.exit_code, 0);
   EXPECT_NE(method.output.find("--methods: 'magic' is not available on"), std::string::npos) << method.output;
   EXPECT_NE(method.output.find("restir-gather"), std::string::npos) << method.output;
 
   args = eval_args(daemon.address(), dir.path / "out");
   args[9] = "0";
-  const auto frames = run_process(args, 60s);
+  const auto frames = run_process(args, k_render_deadline);
   EXPECT_NE(frames.exit_code, 0);
   EXPECT_NE(frames.output.find("--frames must be at least 1"), std::string::npos) << frames.output;
   EXPECT_FALSE(fs::exists(dir.path / "out")) << "nothing was started";
@@ -220,7 +220,7 @@ TEST(EvalTest, TimingRoundsTimeEveryRunAndUseTheirMedian) {
 
   args = eval_args(daemon.address(), dir.path / "bad");
   for (const char* a : {"--timing-rounds", "0"}) args.push_back(a);
-  const auto bad = run_process(args, 60s);
+  const auto bad = run_process(args, k_render_deadline);
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.output.find("--timing-rounds"), std::string::npos) << bad.output;
 }

@@ -94,7 +94,7 @@ v1::CreateSessionRequest session_request(const std::string& builtin, uint32_t wi
 
 grpc::Status create_session(v1::RenderService::Stub& stub, const v1::CreateSessionRequest& req, v1::Session* out) {
   grpc::ClientContext ctx;
-  ctx.set_deadline(std::chrono::system_clock::now() + 60s);
+  ctx.set_deadline(std::chrono::system_clock::now() + k_render_deadline);
   return stub.CreateSession(&ctx, req, out);
 }
 
