@@ -182,10 +182,13 @@ void main() {
     ShiftJob sj;
     sj.ok = false;
     bool run = false;
-    if (job == 0u) {
-      run = reservoir_valid(canonical);
-      if (run) sj = splat_prepare(true, canonical.y, 0u);
-      reverse = sj;
+    // Jobs 0 and 4 reverse-splat: one splat_prepare call site for both (each site inlines tau's
+    // UV-space queries, which lavapipe compiles for minutes).
+    if (job == 0u || job == 4u) {
+      run = job == 0u ? reservoir_valid(canonical) : j_b > 0.0;
+      PathSample y_splat = job == 0u ? canonical.y : shifted_sample(xb.y, yb);  // job 4: Y^b, the backup sample as shifted into this pixel
+      if (run) sj = splat_prepare(true, y_splat, 0u);
+      if (job == 0u) reverse = sj;
     } else if (job == 1u) {
       run = reverse.ok && splat_deeper(reverse, reverse_result);
       if (run) {
@@ -198,10 +201,6 @@ void main() {
     } else if (job == 3u) {
       run = backup_domain && reservoir_valid(xb);
       if (run) sj = gather_prepare(false, vec2(pixel), xb.y);
-    } else if (job == 4u) {
-      run = j_b > 0.0;
-      PathSample y_b = shifted_sample(xb.y, yb);  // Y^b: the backup sample as it was shifted into this pixel
-      if (run) sj = splat_prepare(true, y_b, 0u);
     } else {
       run = backup_domain;
       if (run) sj = gather_prepare(true, vec2(bp.backup), y_s.y);

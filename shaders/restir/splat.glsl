@@ -77,7 +77,9 @@ ShiftJob splat_prepare(bool prev, PathSample y, uint time_partition) {
     time_to = clamp(tk - min(floor(tk), k - 1.0), 0.0, 0.99999994);  // the inverse of Eq. 19
     job.time_ratio = k;
   }
-  ResolvedSurface x1_from = resolve_surface(!prev, y.x1);  // x_1 in the sample's own frame
+  // x_1 in the sample's own frame, at the level it was stored at: never mapped (LOD_VERTEX_NONE
+  // folds tau's code away at this call site, one ray-query traversal less for lavapipe to compile).
+  ResolvedSurface x1_from = resolve_surface_as(!prev, y.x1, LOD_VERTEX_NONE);
   ResolvedSurface y1_to = resolve_surface(prev, y.x1);      // y_1 = tau(x_1) in the target frame (LOD 4.4, "LoD-aware primary hit reprojection")
   count_lod_mapping(y1_to);
   if (x1_from.reason != RESOLVE_OK || y1_to.reason != RESOLVE_OK) {
