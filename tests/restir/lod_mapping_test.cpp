@@ -4,8 +4,9 @@
 // - overlap-uv (a mirrored floor, a cube whose faces share one UV square): with matching the
 //   ambiguous points are matched (LOD Alg. 1), without it they are refused (LOD Fig. 6), and with
 //   lod_mapping off every point on the other level is refused;
-// - lod-cliff (one UV chart): points map uniquely; chess (lathe seams): nine in ten map or better; the UV structure's memory is reported in its own
-//   group and is absent for a scene without LoD groups and for methods without history;
+// - lod-cliff (one UV chart): points map uniquely; chess (lathe seams): nine in ten map or better;
+//   the UV structure's memory is reported in its own group and is absent for a scene without LoD
+//   groups and for methods without history;
 // - numerics: a switch every frame with a teleporting camera, on chess and overlap-uv: all finite.
 #include <cmath>
 #include <cstdio>
@@ -14,17 +15,10 @@
 #include "gpu/gpu_context.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"
+#include "support/test_scenes.h"
 
 namespace strata::test {
 namespace {
-
-// Frame `scene_frame` of the scene's animation with every LoD group at level f % 2.
-scene::FrameState switched(const scene::Scene& s, uint32_t scene_frame, uint32_t f) {
-  scene::FrameState st = s.frame_state(scene_frame);
-  for (size_t i = 0; i < st.lods.size(); ++i)
-    if (s.instances[i].lod_meshes.size() > 1) st.lods[i] = f % 2;
-  return st;
-}
 
 struct Outcome {
   std::map<std::string, uint64_t> reuse;  // of the frame with the switch
@@ -46,7 +40,7 @@ Outcome render_switch(const std::string& scene_name, const std::string& method, 
   options(rs.restir);
   render::Renderer renderer(gpu_context(), s, rs);
   Outcome o;
-  for (uint32_t f = 0; f < 2; ++f) o.reuse = renderer.render(switched(s, 10, f), f).stats.reuse;
+  for (uint32_t f = 0; f < 2; ++f) o.reuse = renderer.render(lod_switched(s, 10, f), f).stats.reuse;
   o.memory = renderer.memory_bytes();
   return o;
 }
@@ -120,7 +114,7 @@ TEST_F(LodMapping, SwitchEveryFrameWithTeleportingCameraStaysFinite) {
       render::Renderer renderer(gpu_context(), s, settings(method, 24));
       uint64_t mapped = 0;
       for (uint32_t f = 0; f < 4; ++f) {
-        scene::FrameState st = switched(s, 10, f);
+        scene::FrameState st = lod_switched(s, 10, f);
         if (f % 2 == 1) st.camera.position += glm::vec3(3.0f, 1.0f, -2.0f);
         auto r = renderer.render(st, f);
         for (float v : r.image.rgba) ASSERT_TRUE(std::isfinite(v)) << "frame " << f;

@@ -448,12 +448,7 @@ std::vector<Case> cases() {
   // floor and the cube whose six faces share one UV square, where Alg. 1 matches (and, without
   // matching, refuses) the points.
   auto lod_switching = [](uint32_t scene_frame) {
-    return [scene_frame](const scene::Scene& s, uint32_t f) {
-      scene::FrameState st = s.frame_state(scene_frame);
-      for (size_t i = 0; i < st.lods.size(); ++i)
-        if (s.instances[i].lod_meshes.size() > 1) st.lods[i] = f % 2;
-      return st;
-    };
+    return [scene_frame](const scene::Scene& s, uint32_t f) { return lod_switched(s, scene_frame, f); };
   };
   // (lod-cliff's reference at 16 spp: its variance share is still under 2%.)
   v.push_back({.name = "lod_cliff_splat", .scene = "lod-cliff", .method = "restir-splat", .frames = 3, .runs = 64,
@@ -462,8 +457,8 @@ std::vector<Case> cases() {
                .reference_spp = 16, .state = lod_switching(60)});
   // chess: three lathed pieces of 3 levels each (make_lod_chain), at 32 x 32 so that they cover
   // whole blocks; the rook, queen and pawn all switch.
-  for (const char* method : {"restir-splat", "restir-gather"})
-    v.push_back({.name = "lod_chess_" + method_test_name(method).substr(7), .scene = "chess", .method = method, .frames = 3,
+  for (const char* method : {"splat", "gather"})
+    v.push_back({.name = std::string("lod_chess_") + method, .scene = "chess", .method = std::string("restir-") + method, .frames = 3,
                  .runs = 64, .size = 32, .reference_runs = 16, .state = lod_switching(0)});
   v.push_back({.name = "lod_overlap_uv_splat", .scene = "overlap-uv", .method = "restir-splat", .frames = 3, .runs = 64,
                .state = lod_switching(10)});

@@ -26,7 +26,7 @@ namespace v1 = ::strata::v1;
 using namespace std::chrono_literals;
 
 // The deadline of a call or process that may render with a pipeline lavapipe has not compiled yet:
-// on a fresh clone (no shader cache) beside restir.all and fuzz.build a restir-multilayer session's
+// on a fresh clone (no shader cache) beside the restir suite and fuzz.build a restir-multilayer session's
 // first frame took over 60 s (CI, DomainMapTest). A hang still fails, later.
 inline constexpr std::chrono::seconds k_render_deadline = 300s;
 

@@ -109,4 +109,11 @@ std::string method_test_name(const std::string& method) {
   return n;
 }
 
+scene::FrameState lod_switched(const scene::Scene& s, uint32_t scene_frame, uint32_t f) {
+  scene::FrameState st = s.frame_state(scene_frame);
+  for (size_t i = 0; i < st.lods.size(); ++i)
+    if (s.instances[i].lod_meshes.size() > 1) st.lods[i] = f % 2;
+  return st;
+}
+
 }  // namespace strata::test

@@ -21,6 +21,9 @@ scene::FrameState cornell_light_shaded(const scene::Scene& cornell);
 
 // A method name as a gtest parameter name ("restir-gather" -> "restir_gather").
 std::string method_test_name(const std::string& method);
+// Frame `scene_frame` of the scene's animation with every LoD group at level f % 2 (a switch at
+// every frame: the LoD-aware reuse tests).
+scene::FrameState lod_switched(const scene::Scene& s, uint32_t scene_frame, uint32_t f);
 
 // One quad of size 2h x 2h in the plane z = z0, facing +Z, with one material.
 scene::Mesh quad_mesh(float half, float z0, uint32_t material);
