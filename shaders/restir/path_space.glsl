@@ -122,6 +122,7 @@ struct ShiftResult {
   vec3 xk_radiance;
   float light_pdf_end;
   float suffix_density;
+  vec3 xk_direction;  // omega_k in x_k's surface frame (the base's; re-expressed at a mapped x_k)
   uint suffix;       // SUFFIX_NONE | SUFFIX_KEPT | SUFFIX_REPLAYED
   uint replay_rays;
   float primary_t;   // a free primary ray's hit distance from the camera (0: none; a check_x1 failure says where)
@@ -142,6 +143,7 @@ ShiftResult shift_none(uint reason) {
   r.xk_radiance = vec3(0.0);
   r.light_pdf_end = 0.0;
   r.suffix_density = 1.0;
+  r.xk_direction = vec3(0.0, 0.0, 1.0);
   r.suffix = SUFFIX_NONE;
   r.replay_rays = 0u;
   r.primary_t = 0.0;
@@ -187,6 +189,7 @@ PathSample shifted_sample(PathSample y, ShiftResult s) {
   y.xk_radiance = s.xk_radiance;
   y.light_pdf_end = s.light_pdf_end;
   y.suffix_density = s.suffix_density;
+  y.xk_direction = s.xk_direction;
   return y;
 }
 
@@ -216,6 +219,32 @@ bool reconnection_visible(bool prev, Vertex v, vec3 d, float dist, bool to_envir
   return false;
 }
 
+#ifdef STRATA_HISTORY
+// omega_k of a reconnection vertex that tau mapped onto another LoD level (LOD 4.4), in the target
+// frame: the stored direction (`local`, in x_k's surface frame at its own level, in the other frame)
+// taken to world space there and carried by the instance's own motion,
+//   omega'_k = A omega_k / |A omega_k|,  A = L_target L_source^-1 (the transforms' linear parts),
+// whose solid-angle Jacobian is |det A| / |A omega_k|^3 (1 for a rigid or static instance). Within one
+// level omega_k turns with x_k's surface frame (surface_to_world); across a switch that frame turns
+// with the other tessellation's shading normal, which for a small light (lod-cliff's sun, 0.6 deg)
+// points the replayed suffix past it. The map is a bijection (its inverse is the same construction
+// from the target side, A^-1), so the shift stays one. False when A is singular.
+bool object_fixed_direction(bool prev, SurfacePoint stored, vec3 local, out vec3 dir, out float jacobian) {
+  dir = vec3(0.0, 0.0, 1.0);
+  jacobian = 0.0;
+  ResolvedSurface own = resolve_surface_as(!prev, stored, LOD_VERTEX_NONE);  // x_k in its own frame and level
+  if (own.reason != RESOLVE_OK) return false;
+  vec3 w = frame_to_world(own.hit.shading_normal, local);
+  mat3 a = mat3(instance_in(prev, stored.instance).object_to_render) * inverse(mat3(instance_in(!prev, stored.instance).object_to_render));
+  vec3 aw = a * w;
+  float la = length(aw);
+  jacobian = abs(determinant(a)) / (la * la * la);
+  if (!(la > 0.0) || !(jacobian > 0.0) || isinf(jacobian)) return false;
+  dir = aw / la;
+  return true;
+}
+#endif
+
 // Evaluates the sample y, shifted into the domain of `pixel` in the current (prev = false) or the
 // previous frame, whose primary vertex is `dp`. suffix_changed: the scene moved between y's frame
 // and the domain's frame.
@@ -225,6 +254,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
   r.xk_radiance = y.xk_radiance;
   r.light_pdf_end = y.light_pdf_end;
   r.suffix_density = y.suffix_density;
+  r.xk_direction = y.xk_direction;
   uint n = y.segments;
   uint k = y.k;
   bool escaped = (y.flags & SAMPLE_ESCAPED) != 0u;
@@ -353,6 +383,15 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
     vec3 fk = vec3(0.0);
     if (k < n) {
       dk = surface_to_world(xk, y.xk_direction);
+#ifdef STRATA_HISTORY
+      if (xk.point.lod != y.xk.lod) {
+        // A mapped x_k: omega_k fixed to the object (object_fixed_direction).
+        float dir_jacobian;
+        if (!object_fixed_direction(prev, y.xk, y.xk_direction, dk, dir_jacobian)) return shift_fail(r, SHIFT_FAIL_JACOBIAN);
+        xk_jacobian *= dir_jacobian;
+        r.xk_direction = surface_to_local(xk, dk);
+      }
+#endif
       fk = scatter(xk, dk);
       if (!(luminance(fk) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
 #ifdef STRATA_HISTORY

@@ -111,12 +111,14 @@ vec3 surface_to_local(Vertex v, vec3 d) {
   return vec3(dot(d, t), dot(d, b), dot(d, v.n_surface));
 }
 
-vec3 surface_to_world(Vertex v, vec3 l) {
+vec3 frame_to_world(vec3 n_surface, vec3 l) {
   vec3 t;
   vec3 b;
-  make_onb(v.n_surface, t, b);
-  return normalize(l.x * t + l.y * b + l.z * v.n_surface);
+  make_onb(n_surface, t, b);
+  return normalize(l.x * t + l.y * b + l.z * n_surface);
 }
+
+vec3 surface_to_world(Vertex v, vec3 l) { return frame_to_world(v.n_surface, l); }
 
 vec3 spawn(Vertex v) { return offset_ray_origin(v.position, v.ng); }
 

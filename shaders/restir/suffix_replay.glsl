@@ -9,7 +9,9 @@
 // surface frame, the random numbers u_j (`seed`) of every later decision, and the structure (the
 // segment count n, the technique of the end, and for an NEE end its light candidate). The shift T
 // of the suffix, from the base path x into the target frame's path y, is then:
-//   omega'_k = R omega_k, R the rotation between x_k's surface frames in the two frames;
+//   omega'_k = R omega_k, R the rotation between x_k's surface frames in the two frames (across a
+//   LoD switch, where tau maps x_k onto another tessellation, the instance's own motion instead,
+//   with its Jacobian: restir/path_space.glsl, object_fixed_direction);
 //   omega'_j = S_{y_j}(u_j), j = k+1 .. n-1, where omega_j = S_{x_j}(u_j) was the base's sample
 //   (BSDF sampling at x_j, or for an NEE end the light sample of x_{n-1}; both frames choose the
 //   light with this frame's alias table, which HISTORY_LIGHTS_RESELECTED says is the same table);
