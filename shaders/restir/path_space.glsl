@@ -235,7 +235,8 @@ bool object_fixed_direction(bool prev, SurfacePoint stored, vec3 local, out vec3
   ResolvedSurface own = resolve_surface_as(!prev, stored, LOD_VERTEX_NONE);  // x_k in its own frame and level
   if (own.reason != RESOLVE_OK) return false;
   vec3 w = frame_to_world(own.hit.shading_normal, local);
-  mat3 a = mat3(instance_in(prev, stored.instance).object_to_render) * inverse(mat3(instance_in(!prev, stored.instance).object_to_render));
+  // L_source^-1 is the transpose of the source frame's normal matrix (the inverse transpose of L).
+  mat3 a = mat3(instance_in(prev, stored.instance).object_to_render) * transpose(mat3(instance_in(!prev, stored.instance).normal_to_render));
   vec3 aw = a * w;
   float la = length(aw);
   jacobian = abs(determinant(a)) / (la * la * la);
