@@ -13,8 +13,8 @@ gpu::Buffer device_storage(const gpu::Context& ctx, size_t bytes, const std::str
   return gpu::Buffer(ctx, bytes, gpu::k_storage_usage, gpu::Memory::Device, name.c_str());
 }
 
-PingPong::PingPong(const gpu::Context& ctx, size_t bytes, const std::string& name) {
-  for (auto& s : slots_) s = device_storage(ctx, bytes, name);
+PingPong::PingPong(const gpu::Context& ctx, size_t bytes, const std::string& name, VkBufferUsageFlags usage) {
+  for (auto& s : slots_) s = gpu::Buffer(ctx, bytes, usage, gpu::Memory::Device, name.c_str());
 }
 
 PassResource uniform(uint32_t binding, const gpu::Buffer& buffer) {

@@ -24,7 +24,7 @@ gpu::Buffer device_storage(const gpu::Context& ctx, size_t bytes, const std::str
 class PingPong {
  public:
   PingPong() = default;
-  PingPong(const gpu::Context& ctx, size_t bytes, const std::string& name);
+  PingPong(const gpu::Context& ctx, size_t bytes, const std::string& name, VkBufferUsageFlags usage = gpu::k_storage_usage);
   const gpu::Buffer& current(int parity) const { return slots_[size_t(parity & 1)]; }
   const gpu::Buffer& previous(int parity) const { return slots_[size_t(1 - (parity & 1))]; }
   uint64_t size() const { return slots_[0].size() + slots_[1].size(); }

@@ -41,6 +41,8 @@
 #define BINDING_DOMAIN_MARKS 33    // per domain: the occluders of the representative hits propagated into it (uvec2)
 #define BINDING_DOMAIN_LIST 34     // the active deep domains, compacted (domain indices)
 #define BINDING_DOMAIN_ARGS 35     // VkDispatchIndirectCommand (workgroups) and the list's length
+#define BINDING_DOMAIN_LIST_PREV 38  // ... the previous frame's list (its active deep domains propagate and splat)
+#define BINDING_DOMAIN_ARGS_PREV 39  // ... and its length
 // LoD-aware reuse (with history; restir/lod_mapping.h, render/lod_uv_space.h)
 #define BINDING_LOD_UV 36          // the UV-space TLAS: every LoD level's triangles at their UVs, a plane per instance
 #define BINDING_LOD_TABLE 37       // GpuLodHeader, then a GpuLodInstance per instance
@@ -53,7 +55,7 @@
 #define SPEC_SPATIAL_LIST 4     // restir_spatial.comp: this dispatch runs the list
 #define SPEC_SPATIAL_COMPACT 5  // restir_spatial.comp: pixels that draw neighbours at random go to that list
 #define SPEC_SPATIAL_PAIRS 6    // restir_spatial.comp: the first two neighbours are the frame's pair (restir/spatial_pairs.glsl)
-#define SPEC_DOMAIN_LIST 7      // restir_initial.comp, restir_splat_resample.comp: this dispatch runs the active deep domains' list
+#define SPEC_DOMAIN_LIST 7      // this dispatch runs a list of active deep domains (initial, splat_resample: this frame's; domain_propagate, splat_project: the previous frame's)
 #define SPEC_LAYER_STEPPING 8   // restir-multilayer, layer_mode uniform / no-depth-ranges: layers by rank (restir/layers.glsl)
 #define SPEC_LOD_MAPPING 9      // passes with history, scenes with LoD groups and lod_mapping on: the resolver maps across LoD switches
 

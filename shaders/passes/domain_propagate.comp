@@ -9,7 +9,8 @@
 // the occluder of the domain's own representative hit (ML Sec. 5, footnote 2). A hit that lands on
 // the front layer needs no mark (front domains are always active); one that falls outside the
 // image, behind the camera, on a back face, or deeper than the k layers is dropped. One thread per
-// previous domain.
+// previous domain: the image dispatch the front layer's, the list dispatch (SPEC_DOMAIN_LIST) the
+// previous frame's active deep domains (restir/domain_list_prev.glsl).
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
 
@@ -20,15 +21,20 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "restir/restir_pass.glsl"
 #include "restir/layers.glsl"
 #include "restir/projection.glsl"
+#include "restir/domain_list_prev.glsl"
 
 layout(set = 0, binding = BINDING_PRIMARY_PREV, std430) readonly buffer PrimaryPrev { GpuPrimaryHit b_primary_prev[]; };
 layout(set = 0, binding = BINDING_DOMAIN_MARKS, std430) buffer Marks { GpuDomainMark b_marks[]; };
 
 void main() {
-  uvec2 prev_pixel = gl_GlobalInvocationID.xy;
-  uint layer = gl_GlobalInvocationID.z;
-  if (prev_pixel.x >= u_frame.prev_width || prev_pixel.y >= u_frame.prev_height || layer >= u_restir.layers) return;
-  uint d = prev_domain_of(prev_pixel, layer);
+  uint d;
+  if (k_domain_list) {
+    if (!prev_list_entry(d)) return;
+  } else {
+    uvec2 prev_pixel = gl_GlobalInvocationID.xy;
+    if (prev_pixel.x >= u_frame.prev_width || prev_pixel.y >= u_frame.prev_height) return;
+    d = prev_domain_of(prev_pixel, 0u);
+  }
   if ((b_domains_prev[d].flags & DOMAIN_PROPAGATES) == 0u) return;
   SurfacePoint c = primary_surface(b_primary_prev[d]);
   ResolvedSurface moved = resolve_surface(false, c);  // T(c_{p,i})

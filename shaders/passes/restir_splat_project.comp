@@ -6,9 +6,11 @@
 // in. The record keeps what the resampling weights of RS-main Eq. 10-11 need. Over an open shutter
 // (motion blur) a thread per previous pixel and time time_partition n (gl_GlobalInvocationID.z) splats
 // into time_partition n (multi-splatting, RS-main Eq. 19); records and targets are per (n, i).
-// restir-multilayer (ML 4.1, 4.2): every previous domain (pixel, layer) splats; a sample whose primary
-// hit is hidden now lands in the deeper domain whose depth range holds it (restir/layers.glsl), or
-// nowhere.
+// restir-multilayer (ML 4.1, 4.2): every active previous domain (pixel, layer) splats, the front
+// layer's in the image dispatch and the deep ones in a dispatch over the previous frame's compacted
+// list (SPEC_DOMAIN_LIST; each thread splats its domain into every time partition; the targets of
+// the domains it leaves out are SPLAT_NONE, filled before); a sample whose primary hit is hidden now
+// lands in the deeper domain whose depth range holds it (restir/layers.glsl), or nowhere.
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
 
@@ -19,18 +21,15 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "restir/restir_pass.glsl"
 #include "restir/splat.glsl"
 #include "restir/splat_data.h"
+#include "restir/domain_list_prev.glsl"
 
 layout(set = 0, binding = BINDING_RESERVOIRS_IN, std430) readonly buffer ReservoirsIn { PackedReservoir b_in[]; };
 layout(set = 0, binding = BINDING_SPLATS, std430) writeonly buffer Splats { SplatRecord b_splats[]; };
 layout(set = 0, binding = BINDING_SPLAT_TARGET, std430) writeonly buffer Targets { uint b_target[]; };
 layout(set = 0, binding = BINDING_SPLAT_COUNT, std430) buffer Counts { uint b_count[]; };
 
-void main() {
-  uvec2 prev_pixel = gl_GlobalInvocationID.xy;
-  uint layer = gl_GlobalInvocationID.z % u_restir.layers;  // z: the previous domain's layer, then the time partition
-  uint time_partition = gl_GlobalInvocationID.z / u_restir.layers;
-  if (prev_pixel.x >= u_frame.prev_width || prev_pixel.y >= u_frame.prev_height || time_partition >= splat_partitions()) return;
-  uint i = prev_domain_of(prev_pixel, layer);
+// Splats previous domain i into time partition `time_partition`.
+void splat(uint i, uint time_partition) {
   uint record = time_partition * prev_domain_count() + i;  // records: per partition, per previous domain
   b_target[record] = SPLAT_NONE;
   Reservoir x = unpack_reservoir(b_in[i]);  // an inactive deep domain holds none (domain_fill.comp)
@@ -76,4 +75,20 @@ void main() {
   uint j = domain_of(uvec2(job.pixel), job.layer);  // the splat's key: the domain it landed in
   b_target[record] = j;
   atomicAdd(b_count[j], 1u);
+}
+
+void main() {
+  uint i;
+  uint first_partition = 0u;
+  uint end_partition = splat_partitions();
+  if (k_domain_list) {
+    if (!prev_list_entry(i)) return;
+  } else {
+    uvec2 prev_pixel = gl_GlobalInvocationID.xy;  // z: the time partition
+    if (prev_pixel.x >= u_frame.prev_width || prev_pixel.y >= u_frame.prev_height || gl_GlobalInvocationID.z >= end_partition) return;
+    i = prev_domain_of(prev_pixel, 0u);
+    first_partition = gl_GlobalInvocationID.z;
+    end_partition = first_partition + 1u;
+  }
+  for (uint n = first_partition; n < end_partition; ++n) splat(i, n);  // one call site: lavapipe inlines a traversal per site
 }

@@ -111,8 +111,10 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
   const size_t layer_entries = multilayer() ? size_t(domains) : 1;
   domain_ranges = PingPong(ctx, sizeof(gpu::GpuDomainRange) * layer_entries, "domain ranges");
   domain_marks = device_storage(ctx, sizeof(gpu::GpuDomainMark) * layer_entries, "domain marks");
-  domain_list = device_storage(ctx, sizeof(uint32_t) * layer_entries, "domain list");
-  domain_args = gpu::Buffer(ctx, sizeof(gpu::GpuDomainArgs), gpu::k_indirect_usage, gpu::Memory::Device, "domain list arguments");
+  // The list holds deep domains only: (k - 1) x pixels at most.
+  const size_t list_entries = multilayer() ? size_t(domains - pixels) : 1;
+  domain_list = PingPong(ctx, sizeof(uint32_t) * list_entries, "domain list");
+  domain_args = PingPong(ctx, sizeof(gpu::GpuDomainArgs), "domain list arguments", gpu::k_indirect_usage);
 }
 
 std::map<std::string, uint64_t> RestirState::memory_bytes() const {

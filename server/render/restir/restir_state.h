@@ -46,8 +46,8 @@ struct RestirState {
   // entry each but for restir-multilayer with k > 1 layers).
   PingPong domain_ranges;     // per domain: depth range, flags, occluder (GpuDomainRange)
   gpu::Buffer domain_marks;   // per domain: occluders of the representative hits propagated into it (GpuDomainMark)
-  gpu::Buffer domain_list;    // the active deep domains, compacted
-  gpu::Buffer domain_args;    // GpuDomainArgs: the list dispatch's workgroups and the list's length
+  PingPong domain_list;       // the active deep domains, compacted (the previous frame's: what propagates and splats)
+  PingPong domain_args;       // GpuDomainArgs: the list dispatch's workgroups and the list's length
   bool multilayer() const { return layers > 1; }
   // The splat stage's counting sort runs (a splat method with temporal reuse).
   bool splat_sort() const { return spec.temporal == StageKind::temporal_splat && settings.restir.temporal; }

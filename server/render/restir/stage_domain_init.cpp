@@ -1,13 +1,14 @@
 // Stage `domain_init` (restir-multilayer; ML 4.3, Sec. 5; docs/ARCHITECTURE.md, "Pixel layers"):
 // the pixel-layer domains of this frame, before any sample is drawn:
-//   domain_propagate  per previous domain that propagates: its representative hit moved into this
+//   domain_propagate  per previous domain that propagates (the front layer's, then the previous
+//                     frame's list of active deep domains): its representative hit moved into this
 //                     frame, its new layer counted along the camera ray, a mark with its occluder
 //   domain_build      per pixel: the representative hits of the deep layers it needs (the centre
 //                     ray walked on), the occluder check, the depth ranges of all its layers
 //   domain_fill       per pixel: hole filling, the compacted list of active deep domains (and the
 //                     indirect dispatch's workgroups), inactive deep reservoirs emptied
-// Reads the previous frame's domain state (domain_ranges.previous, visibility.previous) and writes
-// this frame's (domain_ranges.current, visibility.current's deep entries, the list).
+// Reads the previous frame's domain state (domain_ranges, visibility, domain_list and domain_args:
+// previous) and writes this frame's (their current halves; visibility: the deep entries).
 #include "include/bindings.h"
 #include "include/frame_data.h"
 #include "render/restir/restir_state.h"
@@ -26,11 +27,18 @@ class DomainInitStage : public Stage {
       return std::vector<PassResource>{uniform(BINDING_FRAME, state.shared.constants), uniform(BINDING_RESTIR, state.constants),
                                        storage(BINDING_COUNTERS, Access::read_write, state.shared.counters)};
     };
-    auto propagate = common();
-    propagate.push_back(history_previous(BINDING_PRIMARY_PREV, state.visibility));
-    propagate.push_back(history_previous(BINDING_DOMAINS_PREV, state.domain_ranges));
-    propagate.push_back(storage(BINDING_DOMAIN_MARKS, Access::read_write, state.domain_marks));
-    propagate_ = std::make_unique<Pass>(ctx, scene, SceneUse{.lights = false, .history = true}, "domain_propagate", std::move(propagate));
+    auto propagate = [&](bool list) {
+      auto r = common();
+      r.push_back(history_previous(BINDING_PRIMARY_PREV, state.visibility));
+      r.push_back(history_previous(BINDING_DOMAINS_PREV, state.domain_ranges));
+      r.push_back(storage(BINDING_DOMAIN_MARKS, Access::read_write, state.domain_marks));
+      r.push_back(history_previous(BINDING_DOMAIN_LIST_PREV, state.domain_list));
+      r.push_back(history_previous(BINDING_DOMAIN_ARGS_PREV, state.domain_args));
+      return std::make_unique<Pass>(ctx, scene, SceneUse{.lights = false, .history = true}, "domain_propagate", std::move(r),
+                                    std::vector<gpu::SpecConstant>{{SPEC_DOMAIN_LIST, list ? VK_TRUE : VK_FALSE}});
+    };
+    propagate_front_ = propagate(false);
+    propagate_deep_ = propagate(true);
     auto build = common();
     build.push_back(history_current(BINDING_PRIMARY, Access::read_write, state.visibility));
     build.push_back(history_current(BINDING_DOMAINS, Access::write, state.domain_ranges));
@@ -39,8 +47,8 @@ class DomainInitStage : public Stage {
     auto fill = common();
     fill.push_back(storage(BINDING_RESERVOIRS_OUT, Access::write, state.work));
     fill.push_back(history_current(BINDING_DOMAINS, Access::read_write, state.domain_ranges));
-    fill.push_back(storage(BINDING_DOMAIN_LIST, Access::write, state.domain_list));
-    fill.push_back(storage(BINDING_DOMAIN_ARGS, Access::read_write, state.domain_args));
+    fill.push_back(history_current(BINDING_DOMAIN_LIST, Access::write, state.domain_list));
+    fill.push_back(history_current(BINDING_DOMAIN_ARGS, Access::read_write, state.domain_args));
     fill_ = std::make_unique<Pass>(ctx, nullptr, SceneUse{}, "domain_fill", std::move(fill));
   }
 
@@ -53,10 +61,11 @@ class DomainInitStage : public Stage {
     timed(f, "domain_init", [&] {
       vkCmdFillBuffer(f.cmd, state_.domain_marks.handle(), 0, VK_WHOLE_SIZE, gpu::OCCLUDER_NONE);  // no marks
       const gpu::GpuDomainArgs empty{0, 1, 1, 0};  // no workgroups yet; y = z = 1; length 0
-      vkCmdUpdateBuffer(f.cmd, state_.domain_args.handle(), 0, sizeof empty, &empty);
+      vkCmdUpdateBuffer(f.cmd, state_.domain_args.current(f.parity).handle(), 0, sizeof empty, &empty);
       gpu::compute_barrier(f.cmd);
       if (propagated_) {
-        propagate_->dispatch_layers(f.cmd, f.parity, state_.width, state_.height, state_.layers);
+        propagate_front_->dispatch_2d(f.cmd, f.parity, state_.width, state_.height);
+        propagate_deep_->dispatch_indirect(f.cmd, f.parity, state_.domain_args.previous(f.parity));
         gpu::compute_barrier(f.cmd);
       }
       build_->dispatch_2d(f.cmd, f.parity, state_.width, state_.height);
@@ -98,7 +107,7 @@ class DomainInitStage : public Stage {
 
  private:
   const RestirState& state_;
-  std::unique_ptr<Pass> propagate_, build_, fill_;
+  std::unique_ptr<Pass> propagate_front_, propagate_deep_, build_, fill_;
   bool propagated_ = false;
 };
 

@@ -22,7 +22,7 @@ class InitialStage : public Stage {
   void record(const StageFrame& f) override {
     timed(f, "initial", [&] {
       pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height);
-      if (deep_) deep_->dispatch_indirect(f.cmd, f.parity, state_.domain_args);
+      if (deep_) deep_->dispatch_indirect(f.cmd, f.parity, state_.domain_args.current(f.parity));
     });
   }
   void collect(std::span<const uint32_t> c, FrameStats& s) const override {
@@ -46,8 +46,8 @@ class InitialStage : public Stage {
     return restir_resources(state_, storage(BINDING_RESERVOIRS_OUT, Access::write, state_.work),
                             {history_current(BINDING_PRIMARY, Access::read, state_.visibility),
                              history_current(BINDING_DOMAINS, Access::read, state_.domain_ranges),
-                             storage(BINDING_DOMAIN_LIST, Access::read, state_.domain_list),
-                             storage(BINDING_DOMAIN_ARGS, Access::read, state_.domain_args),
+                             history_current(BINDING_DOMAIN_LIST, Access::read, state_.domain_list),
+                             history_current(BINDING_DOMAIN_ARGS, Access::read, state_.domain_args),
                              storage(BINDING_SPLAT_OFFSETS, Access::read, state_.splat_offsets)});
   }
   bool boost() const { return state_.splat_sort() && state_.settings.restir.disocclusion_initial_candidates > 0; }

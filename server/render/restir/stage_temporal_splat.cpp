@@ -8,9 +8,10 @@
 //   splat_resample  per current pixel: GRIS of the canonical sample with the splats that landed
 //                   (and the backup sample, shifted from the backprojected previous pixel)
 // Over an open shutter every previous reservoir splats into K time partitions (RS-main Eq. 19).
-// restir-multilayer (ML 4.1, 4.2): every previous domain (pixel, layer) splats, into the front layer
-// or the deeper domain whose depth range holds it; the counting sort runs over all domains, and a
-// second resampling dispatch runs the compacted list of active deep domains.
+// restir-multilayer (ML 4.1, 4.2): every active previous domain (pixel, layer) splats, into the front
+// layer or the deeper domain whose depth range holds it: the front layer's in the image dispatch,
+// the deep ones in a second dispatch over the previous frame's compacted list; the counting sort
+// runs over all domains, and a second resampling dispatch runs this frame's list.
 #include "include/bindings.h"
 #include "include/frame_data.h"
 #include "render/frame_constants.h"
@@ -37,13 +38,18 @@ class TemporalSplatStage : public Stage {
     auto ranges = [&] { return history_current(BINDING_DOMAINS, Access::read, state.domain_ranges); };
     auto ranges_prev = [&] { return history_previous(BINDING_DOMAINS_PREV, state.domain_ranges); };
     const uint32_t stepping = state.layer_stepping() ? VK_TRUE : VK_FALSE;  // layers by rank (restir/layers.glsl)
-    project_ = std::make_unique<Pass>(ctx, scene, with_history, "restir_splat_project",
-                                      restir_resources(state, out(),
-                                                       {in(), storage(BINDING_SPLATS, Access::write, splats_),
-                                                        storage(BINDING_SPLAT_TARGET, Access::write, target_),
-                                                        storage(BINDING_SPLAT_COUNT, Access::read_write, count_), ranges(),
-                                                        ranges_prev()}),
-                                      std::vector<gpu::SpecConstant>{{SPEC_LAYER_STEPPING, stepping}});
+    auto project = [&](bool deep) {
+      return std::make_unique<Pass>(ctx, scene, with_history, "restir_splat_project",
+                                    restir_resources(state, out(),
+                                                     {in(), storage(BINDING_SPLATS, Access::write, splats_),
+                                                      storage(BINDING_SPLAT_TARGET, Access::write, target_),
+                                                      storage(BINDING_SPLAT_COUNT, Access::read_write, count_), ranges(), ranges_prev(),
+                                                      history_previous(BINDING_DOMAIN_LIST_PREV, state.domain_list),
+                                                      history_previous(BINDING_DOMAIN_ARGS_PREV, state.domain_args)}),
+                                    std::vector<gpu::SpecConstant>{{SPEC_DOMAIN_LIST, deep ? VK_TRUE : VK_FALSE}, {SPEC_LAYER_STEPPING, stepping}});
+    };
+    project_ = project(false);
+    if (state.multilayer()) project_deep_ = project(true);
     scan_ = std::make_unique<Pass>(ctx, nullptr, SceneUse{}, "restir_splat_scan",
                                    std::vector<PassResource>{uniform(BINDING_FRAME, state.shared.constants),
                                                              uniform(BINDING_RESTIR, state.constants),
@@ -65,8 +71,8 @@ class TemporalSplatStage : public Stage {
                                                       history_current(BINDING_PRIMARY, Access::read, state.visibility),
                                                       // read_write: the front layer's DOMAIN_COVERED flag
                                                       history_current(BINDING_DOMAINS, Access::read_write, state.domain_ranges),
-                                                      ranges_prev(), storage(BINDING_DOMAIN_LIST, Access::read, state.domain_list),
-                                                      storage(BINDING_DOMAIN_ARGS, Access::read, state.domain_args)}),
+                                                      ranges_prev(), history_current(BINDING_DOMAIN_LIST, Access::read, state.domain_list),
+                                                      history_current(BINDING_DOMAIN_ARGS, Access::read, state.domain_args)}),
                                     std::vector<gpu::SpecConstant>{{SPEC_DOMAIN_LIST, deep ? VK_TRUE : VK_FALSE}, {SPEC_LAYER_STEPPING, stepping}});
     };
     resample_ = resample(false);
@@ -87,15 +93,17 @@ class TemporalSplatStage : public Stage {
     partitions_ = time_partitions(f.frame.frame, state_.settings.restir.splats_per_frame);
     if (partitions_ > allocated_partitions_) {
       allocate_records(partitions_);
-      for (Pass* p : {project_.get(), insert_.get(), resample_.get(), resample_deep_.get()})
+      for (Pass* p : {project_.get(), project_deep_.get(), insert_.get(), resample_.get(), resample_deep_.get()})
         if (p) p->rebind();
     }
     const uint32_t w = state_.width, h = state_.height;
     timed(f, "splat_project", [&] {
       vkCmdFillBuffer(f.cmd, count_.handle(), 0, VK_WHOLE_SIZE, 0);
+      // The list dispatch leaves the inactive deep domains out: their records land nowhere.
+      if (project_deep_) vkCmdFillBuffer(f.cmd, target_.handle(), 0, VK_WHOLE_SIZE, gpu::SPLAT_NONE);
       gpu::compute_barrier(f.cmd);
-      // z: each previous domain's layer, per time partition
-      project_->dispatch_layers(f.cmd, f.parity, w, h, state_.layers * partitions_);
+      project_->dispatch_layers(f.cmd, f.parity, w, h, partitions_);  // the front layer; z: the time partition
+      if (project_deep_) project_deep_->dispatch_indirect(f.cmd, f.parity, state_.domain_args.previous(f.parity));
     });
     timed(f, "splat_scan", [&] { scan_->dispatch_1d(f.cmd, f.parity, 1); });
     timed(f, "splat_insert", [&] { insert_->dispatch_layers(f.cmd, f.parity, w, h, state_.layers * partitions_); });
@@ -106,7 +114,7 @@ class TemporalSplatStage : public Stage {
     const uint32_t w = state_.width, h = state_.height;
     timed(f, "splat_resample", [&] {
       resample_->dispatch_2d(f.cmd, f.parity, w, h);
-      if (resample_deep_) resample_deep_->dispatch_indirect(f.cmd, f.parity, state_.domain_args);
+      if (resample_deep_) resample_deep_->dispatch_indirect(f.cmd, f.parity, state_.domain_args.current(f.parity));
     });
   }
 
@@ -166,7 +174,8 @@ class TemporalSplatStage : public Stage {
   const gpu::Buffer& offsets_;  // RestirState::splat_offsets (the initial stage reads it too)
   gpu::Buffer splats_, target_, list_;  // reallocated in place by allocate_records (the passes then rebind)
   std::unique_ptr<Pass> project_, scan_, insert_, resample_;
-  std::unique_ptr<Pass> resample_deep_;  // restir-multilayer: the active deep domains' list
+  std::unique_ptr<Pass> project_deep_;   // restir-multilayer: the previous frame's active deep domains' list
+  std::unique_ptr<Pass> resample_deep_;  // restir-multilayer: this frame's
   uint32_t allocated_partitions_ = 0;
   uint32_t partitions_ = 1;
   bool ran_ = false;
