@@ -29,9 +29,11 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(set = 0, binding = BINDING_PRIMARY, std430) buffer Primary { GpuPrimaryHit b_primary[]; };
 layout(set = 0, binding = BINDING_DOMAIN_MARKS, std430) readonly buffer Marks { GpuDomainMark b_marks[]; };
+layout(set = 0, binding = BINDING_PRIMARY_PREV, std430) readonly buffer PrimaryPrev { GpuPrimaryHit b_primary_prev[]; };
 
 #include "sampling/warp.h"
 #include "include/camera.glsl"
+#include "restir/projection.glsl"
 
 const uint CENSUS_STRIDE = 4u;  // the uniform census: every 4th pixel in x and y
 
@@ -40,14 +42,25 @@ const uint CENSUS_STRIDE = 4u;  // the uniform census: every 4th pixel in x and 
 // previous image is not a disocclusion (ML Table 1 counts surfaces that were occluded: no layer of
 // any scheme held a surface the previous camera did not look at); the evaluation's disocclusion
 // mask (render/disocclusion.h) counts both, as every pixel without history.
+// The ray is skipped where the previous centre hits of the pixel the point falls in and of its four
+// neighbours all lie on its instance at nearly its distance (restir/layers.glsl, centre_hit_on):
+// no silhouette crossed that pixel, so the point was seen.
 bool disoccluded(GpuPrimaryHit front, inout uint rays) {
   if ((u_frame.history_flags & HISTORY_VALID) == 0u) return false;
   ResolvedSurface before = resolve_surface(true, primary_surface(front));
   if (before.reason != RESOLVE_OK) return true;
   vec3 p = before.hit.position;  // in the previous frame's render space: its camera at the origin
   float dist = length(p);
-  vec3 ndc = camera_ndc(u_frame.prev_camera, p);
-  if (!(ndc.z > 0.0 && abs(ndc.x) <= 1.0 && abs(ndc.y) <= 1.0) || !(dist > 0.0)) return false;
+  uvec2 q;
+  vec2 sub;
+  if (!(dist > 0.0) || !project(u_frame.prev_camera, u_frame.prev_width, u_frame.prev_height, p, vec3(0.0), q, sub)) return false;
+  bool seen = true;
+  const ivec2 offsets[5] = ivec2[5](ivec2(0, 0), ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1));
+  for (uint n = 0u; n < 5u && seen; ++n) {
+    ivec2 r = clamp(ivec2(q) + offsets[n], ivec2(0), ivec2(u_frame.prev_width, u_frame.prev_height) - 1);
+    seen = centre_hit_on(b_primary_prev[prev_domain_of(uvec2(r), 0u)], front.instance, dist);
+  }
+  if (seen) return false;
   RayHit h;
   rays++;
   return trace_closest_in(true, vec3(0.0), p / dist, dist * (1.0 + LAYER_OCCLUDER_MARGIN), h) && h.t < dist * (1.0 - LAYER_OCCLUDER_MARGIN);

@@ -30,6 +30,7 @@ class DomainInitStage : public Stage {
     auto propagate = [&](bool list) {
       auto r = common();
       r.push_back(history_previous(BINDING_PRIMARY_PREV, state.visibility));
+      r.push_back(history_current(BINDING_PRIMARY, Access::read, state.visibility));  // this frame's centre hits
       r.push_back(history_previous(BINDING_DOMAINS_PREV, state.domain_ranges));
       r.push_back(storage(BINDING_DOMAIN_MARKS, Access::read_write, state.domain_marks));
       r.push_back(history_previous(BINDING_DOMAIN_LIST_PREV, state.domain_list));
@@ -43,6 +44,7 @@ class DomainInitStage : public Stage {
     build.push_back(history_current(BINDING_PRIMARY, Access::read_write, state.visibility));
     build.push_back(history_current(BINDING_DOMAINS, Access::write, state.domain_ranges));
     build.push_back(storage(BINDING_DOMAIN_MARKS, Access::read, state.domain_marks));
+    build.push_back(history_previous(BINDING_PRIMARY_PREV, state.visibility));  // the previous centre hits: disocclusion
     build_ = std::make_unique<Pass>(ctx, scene, SceneUse{.lights = false, .history = true}, "domain_build", std::move(build));
     auto fill = common();
     fill.push_back(storage(BINDING_RESERVOIRS_OUT, Access::write, state.work));
