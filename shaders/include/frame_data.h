@@ -120,7 +120,8 @@ CONST_DEF uint COUNTER_LOD_FAIL_AMBIGUOUS = 64u;    // ... several share it, unm
 CONST_DEF uint COUNTER_LOD_FAIL_DEGENERATE = 65u;   // ... a degenerate UV triangle
 CONST_DEF uint COUNTER_LOD_UV_RAYS = 66u;           // UV-space queries
 CONST_DEF uint COUNTER_LOD_REFUSED = 67u;           // points on another level that were not mapped (mapping off)
-CONST_DEF uint COUNTER_COUNT = 68u;
+CONST_DEF uint COUNTER_DISOCCLUDED_HELD = 68u;     // restir-multilayer: disoccluded pixels whose hit an active previous deep domain's depth range held
+CONST_DEF uint COUNTER_COUNT = 69u;
 
 STRATA_NAMESPACE_END
 

@@ -14,6 +14,8 @@
 // back with its object, was hidden from the previous camera behind another surface (a closest-hit
 // query in the previous frame's TLAS, as the evaluation's disocclusion mask tests it:
 // render/disocclusion.h), or its object changed LoD level; not when it fell outside the previous image.
+// Of those, the ones an active deep domain of the previous pixel they fall in held in its depth range
+// are counted as held (the activation's coverage, ML Table 1's "Domain Effectiveness").
 // A census of every fourth pixel in each direction walks all k layers, so that the frame reports how
 // many deep domains a uniform k-layer scheme would keep (ML Table 1) without walking every pixel.
 #extension GL_EXT_ray_query : require
@@ -45,7 +47,10 @@ const uint CENSUS_STRIDE = 4u;  // the uniform census: every 4th pixel in x and 
 // The ray is skipped where the previous centre hits of the pixel the point falls in and of its four
 // neighbours all lie on its instance at nearly its distance (restir/layers.glsl, centre_hit_on):
 // no silhouette crossed that pixel, so the point was seen.
-bool disoccluded(GpuPrimaryHit front, inout uint rays) {
+// held: the point lay in the depth range of an active deep domain of the previous pixel it falls in
+// (ML Table 1 "Domain Effectiveness": the activation's coverage, before any splat has to land).
+bool disoccluded(GpuPrimaryHit front, inout uint rays, out bool held) {
+  held = false;
   if ((u_frame.history_flags & HISTORY_VALID) == 0u) return false;
   ResolvedSurface before = resolve_surface(true, primary_surface(front));
   if (before.reason != RESOLVE_OK) return true;
@@ -63,7 +68,10 @@ bool disoccluded(GpuPrimaryHit front, inout uint rays) {
   if (seen) return false;
   RayHit h;
   rays++;
-  return trace_closest_in(true, vec3(0.0), p / dist, dist * (1.0 + LAYER_OCCLUDER_MARGIN), h) && h.t < dist * (1.0 - LAYER_OCCLUDER_MARGIN);
+  if (!(trace_closest_in(true, vec3(0.0), p / dist, dist * (1.0 + LAYER_OCCLUDER_MARGIN), h) && h.t < dist * (1.0 - LAYER_OCCLUDER_MARGIN))) return false;
+  uint layer = layer_by_range(true, q, dist);
+  held = layer >= 1u && layer < u_restir.layers;
+  return true;
 }
 
 bool marked(ivec2 q, uint layer) {
@@ -139,8 +147,10 @@ void main() {
       t0 = step_beyond(t);
     }
   }
-  bool front_disoccluded = front_hit && disoccluded(front, rays);
+  bool held = false;
+  bool front_disoccluded = front_hit && disoccluded(front, rays, held);
   if (front_disoccluded) atomicAdd(b_counters[COUNTER_DISOCCLUDED], 1u);
+  if (held) atomicAdd(b_counters[COUNTER_DISOCCLUDED_HELD], 1u);
   atomicAdd(b_counters[COUNTER_RAYS_DOMAIN_INIT], rays);
   if (census && found > 1u) atomicAdd(b_counters[COUNTER_DOMAINS_UNIFORM], (found - 1u) * (uniform_mode ? 1u : CENSUS_STRIDE * CENSUS_STRIDE));
 

@@ -45,6 +45,7 @@ class DomainInitStage : public Stage {
     build.push_back(history_current(BINDING_DOMAINS, Access::write, state.domain_ranges));
     build.push_back(storage(BINDING_DOMAIN_MARKS, Access::read, state.domain_marks));
     build.push_back(history_previous(BINDING_PRIMARY_PREV, state.visibility));  // the previous centre hits: disocclusion
+    build.push_back(history_previous(BINDING_DOMAINS_PREV, state.domain_ranges));  // ... and the domains that held it
     build_ = std::make_unique<Pass>(ctx, scene, SceneUse{.lights = false, .history = true}, "domain_build", std::move(build));
     auto fill = common();
     fill.push_back(storage(BINDING_RESERVOIRS_OUT, Access::write, state.work));
@@ -104,6 +105,9 @@ class DomainInitStage : public Stage {
     s.reuse["domains.occluder_refused"] = c[COUNTER_DOMAINS_OCCLUDER];
     s.reuse["domains.uniform_deep"] = c[COUNTER_DOMAINS_UNIFORM];
     s.reuse["domains.disoccluded"] = c[COUNTER_DISOCCLUDED];  // front-layer hits hidden from the previous camera
+    // ... of them, hits an active previous deep domain held (in its depth range, at the previous
+    // pixel the hit falls in): the activation's coverage, whether or not a splat then lands
+    s.reuse["domains.disoccluded_held"] = c[COUNTER_DISOCCLUDED_HELD];
     s.rays_traced["domain_init"] = c[COUNTER_RAYS_DOMAIN_INIT];
   }
 
