@@ -3,8 +3,8 @@
 // splat counts, offsets[j] = sum_{l<j} count[l], offsets[N] = the number of splats. One workgroup of
 // 256 invocations: each sums its contiguous segment of the counts, a Hillis-Steele scan in shared
 // memory turns the 256 segment sums into segment offsets, and each invocation writes its segment's
-// offsets in order. Eight barriers per frame instead of a chunked scan's sixteen per 256 counts:
-// on lavapipe a barrier switches every invocation of the workgroup.
+// offsets in order. 17 barriers per frame instead of a chunked scan's 18 per 256 counts: on
+// lavapipe a barrier switches every invocation of the workgroup.
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 256, local_size_y = 1, local_size_z = 1) in;
