@@ -36,6 +36,7 @@ layout(set = 0, binding = BINDING_PRIMARY_PREV, std430) readonly buffer PrimaryP
 #include "sampling/warp.h"
 #include "include/camera.glsl"
 #include "restir/projection.glsl"
+#include "restir/seen_in_pixel.glsl"
 
 const uint CENSUS_STRIDE = 4u;  // the uniform census: every 4th pixel in x and y
 
@@ -44,9 +45,7 @@ const uint CENSUS_STRIDE = 4u;  // the uniform census: every 4th pixel in x and 
 // previous image is not a disocclusion (ML Table 1 counts surfaces that were occluded: no layer of
 // any scheme held a surface the previous camera did not look at); the evaluation's disocclusion
 // mask (render/disocclusion.h) counts both, as every pixel without history.
-// The ray is skipped where the previous centre hits of the pixel the point falls in and of its four
-// neighbours all lie on its instance at nearly its distance (restir/layers.glsl, centre_hit_on):
-// no silhouette crossed that pixel, so the point was seen.
+// The ray is skipped where the point was seen in the previous pixel it falls in (seen_in_pixel).
 // held: the point lay in the depth range of an active deep domain of the previous pixel it falls in
 // (ML Table 1 "Domain Effectiveness": the activation's coverage, before any splat has to land).
 bool disoccluded(GpuPrimaryHit front, inout uint rays, out bool held) {
@@ -59,13 +58,7 @@ bool disoccluded(GpuPrimaryHit front, inout uint rays, out bool held) {
   uvec2 q;
   vec2 sub;
   if (!(dist > 0.0) || !project(u_frame.prev_camera, u_frame.prev_width, u_frame.prev_height, p, vec3(0.0), q, sub)) return false;
-  bool seen = true;
-  const ivec2 offsets[5] = ivec2[5](ivec2(0, 0), ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1));
-  for (uint n = 0u; n < 5u && seen; ++n) {
-    ivec2 r = clamp(ivec2(q) + offsets[n], ivec2(0), ivec2(u_frame.prev_width, u_frame.prev_height) - 1);
-    seen = centre_hit_on(b_primary_prev[prev_domain_of(uvec2(r), 0u)], front.instance, dist);
-  }
-  if (seen) return false;
+  if (seen_in_pixel(true, q, front.instance, dist)) return false;
   RayHit h;
   rays++;
   if (!(trace_closest_in(true, vec3(0.0), p / dist, dist * (1.0 + LAYER_OCCLUDER_MARGIN), h) && h.t < dist * (1.0 - LAYER_OCCLUDER_MARGIN))) return false;

@@ -25,19 +25,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(set = 0, binding = BINDING_PRIMARY_PREV, std430) readonly buffer PrimaryPrev { GpuPrimaryHit b_primary_prev[]; };
 layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
-
-// Whether T(c), on `instance` at distance d in `pixel`, is what the camera sees there (layer 0)
-// without a ray: this frame's centre hits of the pixel and its four neighbours all lie on its
-// instance at nearly its distance (restir/layers.glsl, centre_hit_on). Most front-layer hits stay
-// in front from one frame to the next; the others take the walk.
-bool seen_in_pixel(uvec2 pixel, uint instance, float d) {
-  const ivec2 offsets[5] = ivec2[5](ivec2(0, 0), ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1));
-  for (uint n = 0u; n < 5u; ++n) {
-    ivec2 q = clamp(ivec2(pixel) + offsets[n], ivec2(0), ivec2(u_frame.width, u_frame.height) - 1);
-    if (!centre_hit_on(b_primary[domain_of(uvec2(q), 0u)], instance, d)) return false;
-  }
-  return true;
-}
+#include "restir/seen_in_pixel.glsl"
 layout(set = 0, binding = BINDING_DOMAIN_MARKS, std430) buffer Marks { GpuDomainMark b_marks[]; };
 
 void main() {
@@ -61,7 +49,8 @@ void main() {
   if (!(dist > 0.0) || !project(u_frame.camera, u_frame.width, u_frame.height, moved.hit.position, origin, pixel, sub)) return;
   vec3 dir = e / dist;
   if (dot(moved.hit.geo_normal, dir) >= 0.0) return;  // a back face is in no layer
-  if (seen_in_pixel(pixel, c.instance, dist)) return;  // layer 0: front domains need no mark
+  // Layer 0 without a walk (most front-layer hits stay in front): front domains need no mark.
+  if (seen_in_pixel(false, pixel, c.instance, dist)) return;
   LayerWalk w = walk_to_point(false, origin, dir, c, dist);  // ML Fig. 2
   atomicAdd(b_counters[COUNTER_RAYS_DOMAIN_INIT], w.rays);
   uint found = w.layer;

@@ -8,8 +8,7 @@
 // into time_partition n (multi-splatting, RS-main Eq. 19); records and targets are per (n, i).
 // restir-multilayer (ML 4.1, 4.2): every active previous domain (pixel, layer) splats, the front
 // layer's in the image dispatch and the deep ones in a dispatch over the previous frame's compacted
-// list (SPEC_DOMAIN_LIST; each thread splats its domain into every time partition; the targets of
-// the domains it leaves out are SPLAT_NONE, filled before); a sample whose primary hit is hidden now
+// list (SPEC_DOMAIN_LIST; each thread splats its domain into every time partition); a sample whose primary hit is hidden now
 // lands in the deeper domain whose depth range holds it (restir/layers.glsl), or nowhere.
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
@@ -31,7 +30,7 @@ layout(set = 0, binding = BINDING_SPLAT_COUNT, std430) buffer Counts { uint b_co
 // Splats previous domain i into time partition `time_partition`.
 void splat(uint i, uint time_partition) {
   uint record = time_partition * prev_domain_count() + i;  // records: per partition, per previous domain
-  b_target[record] = SPLAT_NONE;
+  // b_target[record] stays SPLAT_NONE (filled before the pass) unless the splat lands.
   Reservoir x = unpack_reservoir(b_in[i]);  // an inactive deep domain holds none (domain_fill.comp)
   if (!reservoir_valid(x)) return;
   bool moved = (u_frame.history_flags & HISTORY_SCENE_MOVED) != 0u;

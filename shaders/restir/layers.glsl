@@ -67,16 +67,6 @@ uint layer_by_range(bool prev, uvec2 pixel, float d) {
 // Whether a primary ray that found a surface at primary_t (0: none) hides a point at distance d.
 bool hidden_at(float primary_t, float d) { return primary_t > 0.0 && primary_t < d * (1.0 - LAYER_OCCLUDER_MARGIN); }
 
-// Whether a pixel-centre hit (a visibility-buffer entry of the front layer) lies on `instance` at
-// nearly distance d: SEEN_DEPTH_MARGIN relative. When a pixel's centre hit and its four neighbours'
-// all do, no silhouette crosses the pixel and a point of that instance at d inside it is what the
-// camera sees there: domain_propagate (this frame's centre hits) and domain_build's disocclusion
-// test (the previous frame's) then skip a visibility ray.
-const float SEEN_DEPTH_MARGIN = 0.02;
-bool centre_hit_on(GpuPrimaryHit h, uint instance, float d) {
-  return (h.flags & PRIMARY_HIT) != 0u && h.instance == instance && abs(h.t - d) <= SEEN_DEPTH_MARGIN * d;
-}
-
 // Where a walk along a ray continues after a hit at distance t: just beyond it.
 float step_beyond(float t) { return t + max(t * 1e-4, 1e-5); }
 

@@ -99,8 +99,8 @@ class TemporalSplatStage : public Stage {
     const uint32_t w = state_.width, h = state_.height;
     timed(f, "splat_project", [&] {
       vkCmdFillBuffer(f.cmd, count_.handle(), 0, VK_WHOLE_SIZE, 0);
-      // The list dispatch leaves the inactive deep domains out: their records land nowhere.
-      if (project_deep_) vkCmdFillBuffer(f.cmd, target_.handle(), 0, VK_WHOLE_SIZE, gpu::SPLAT_NONE);
+      // Every record lands nowhere until its splat lands (domains the list dispatch leaves out included).
+      vkCmdFillBuffer(f.cmd, target_.handle(), 0, VK_WHOLE_SIZE, gpu::SPLAT_NONE);
       gpu::compute_barrier(f.cmd);
       project_->dispatch_layers(f.cmd, f.parity, w, h, partitions_);  // the front layer; z: the time partition
       if (project_deep_) project_deep_->dispatch_indirect(f.cmd, f.parity, state_.domain_args.previous(f.parity));
