@@ -4,7 +4,8 @@
 // against its reference (RelMSE, MAPE, HDR-FLIP; also over the disoccluded pixels when the
 // reference has them), and writes results.csv, results.json and a self-contained report.html.
 // With --equal-time, pt then gets as many samples per frame as fit in each other method's median
-// frame time.
+// frame time. With --score-from N the first N frames warm each method up: they are played but
+// neither scored nor timed, and need no reference.
 #include <chrono>
 #include <ctime>
 #include <filesystem>
@@ -58,6 +59,7 @@ std::string command_line(const EvalArgs& a) {
   s << "strata eval --server " << a.conn.server << " --scenes " << a.scene_list << " --methods " << a.method_list;
   if (a.camera_path.empty()) s << " --frames " << a.frames;
   else s << " --camera-path " << a.camera_path;
+  if (a.score_from) s << " --score-from " << a.score_from;
   s << " --width " << a.width << " --height " << a.height << " --reference-spp " << a.reference_spp << " --reference-error "
     << a.reference_error << " --seed " << a.seed;
   if (a.max_depth) s << " --max-depth " << a.max_depth;
@@ -80,9 +82,9 @@ class Evaluation {
       : a_(a), client_(client), progress_(total_steps, Progress::stderr_is_terminal()) {}
 
   void scene(const std::string& scene, report::Report& rep) {
-    // References first: every method is scored against the same images.
+    // References first: every method is scored against the same images (refs[f - score_from]).
     std::vector<ReferenceImage> refs;
-    for (uint32_t f = 0; f < a_.frames; ++f) {
+    for (uint32_t f = a_.score_from; f < a_.frames; ++f) {
       const auto t = Clock::now();
       refs.push_back(client_.reference(scene, f, a_));
       const auto& info = refs.back().info;
@@ -167,7 +169,7 @@ class Evaluation {
     std::vector<double> ms;
     auto t = Clock::now();
     client_.run_method(scene, method, spp, a_, [&](MethodImage&& m) {
-      ms.push_back(m.gpu_ms);
+      if (m.frame >= a_.score_from) ms.push_back(m.gpu_ms);
       step(m.frame, ms_since(t), m.gpu_ms, scene + " " + method + " spp " + std::to_string(spp) + " frame " + std::to_string(m.frame) + " (timing)");
       t = Clock::now();
     });
@@ -181,11 +183,17 @@ class Evaluation {
     r.scene = scene;
     r.method = method;
     r.spp = spp;
-    double cumulative = 0.0;
+    double cumulative = 0.0;  // over every frame played, warm-up included
     auto t = Clock::now();
     client_.run_method(scene, method, spp, a_, [&](MethodImage&& m) {
+      if (m.frame < a_.score_from) {
+        cumulative += m.gpu_ms;
+        step(m.frame, ms_since(t), m.gpu_ms, scene + " " + method + " spp " + std::to_string(spp) + " frame " + std::to_string(m.frame) + " (warm-up)");
+        t = Clock::now();
+        return;
+      }
       const bool is_last = m.frame + 1 == a_.frames;
-      r.frames.push_back(score_frame(m, refs.at(m.frame), cumulative, is_last ? flip_map : nullptr));
+      r.frames.push_back(score_frame(m, refs.at(m.frame - a_.score_from), cumulative, is_last ? flip_map : nullptr));
       cumulative = r.frames.back().cumulative_ms;
       const auto& f = r.frames.back();
       step(m.frame, ms_since(t), m.gpu_ms,
@@ -239,6 +247,7 @@ int run_eval(EvalArgs& a, bool frames_given) {
               {"date", utc_now()},
               {"resolution", {{"width", a.width}, {"height", a.height}}},
               {"frames", a.frames},
+              {"score_from", a.score_from},
               {"scenes", a.scenes},
               {"methods", a.methods},
               {"seed", a.seed},
@@ -256,7 +265,7 @@ int run_eval(EvalArgs& a, bool frames_given) {
   for (const auto& m : a.methods) non_pt += m != "pt";
   const bool has_pt = non_pt < a.methods.size();
   const uint64_t runs_per_scene = a.methods.size() + (a.equal_time ? non_pt + (has_pt ? 0 : 1) : 0);
-  const uint64_t per_scene = a.frames * (1 + runs_per_scene * a.timing_rounds);
+  const uint64_t per_scene = (a.frames - a.score_from) + a.frames * runs_per_scene * a.timing_rounds;
   Evaluation eval(a, client, per_scene * a.scenes.size());
   std::cerr << "strata: eval of " << a.scenes.size() << " scene(s) x " << a.methods.size() << " method(s), " << a.frames
             << " frame(s) at " << a.width << "x" << a.height << " on " << client.status().device() << " (" << a.conn.server << ")\n";
@@ -286,6 +295,10 @@ Runner add_eval_command(CLI::App& app) {
       ->capture_default_str();
   auto* frames = cmd->add_option("--frames", a->frames, "frames of each scene's default animation (not with --camera-path)")
                      ->capture_default_str();
+  cmd->add_option("--score-from", a->score_from,
+                  "warm-up: frames 0..N-1 are played by every method but neither scored nor timed (no references for them); "
+                  "a method that learns over frames (restir-multilayer's active domains) is then scored in its steady state")
+      ->capture_default_str();
   cmd->add_option("--camera-path", a->camera_path,
                   "JSON {\"frames\": [FrameInput, ...]} as for strata stream, replacing the default animation: each entry sets "
                   "animation_frame and may set camera, transforms and lod_changes; its entries are the frames (--frames "

@@ -54,6 +54,9 @@ void EvalClient::check(const EvalSettings& s) {
   if (s.scenes.empty()) throw std::runtime_error("--scenes is empty");
   if (s.methods.empty()) throw std::runtime_error("--methods is empty");
   if (s.frames < 1) throw std::runtime_error("--frames must be at least 1");
+  if (s.score_from >= s.frames)
+    throw std::runtime_error("--score-from = " + std::to_string(s.score_from) + " leaves no frame to score: it must be below the " +
+                             std::to_string(s.frames) + " frames played");
   std::vector<std::string> names;
   for (const auto& [name, kind] : scenes_) names.push_back(name);
   for (const auto& scene : s.scenes)

@@ -25,6 +25,7 @@ struct EvalSettings {
   ConnectionOptions conn;          // --server, TLS, token
   std::vector<std::string> scenes{"cornell"}, methods{"pt", "restir-gather"};
   uint32_t frames = 16, width = 256, height = 256, seed = 0;
+  uint32_t score_from = 0;         // frames before it are played (warm-up), neither scored nor timed
   uint32_t max_depth = 0;          // 0: the server's default
   uint32_t reference_spp = 1024;
   float reference_error = 0.0f;    // 0: no early stop

@@ -225,5 +225,49 @@ TEST(EvalTest, TimingRoundsTimeEveryRunAndUseTheirMedian) {
   EXPECT_NE(bad.output.find("--timing-rounds"), std::string::npos) << bad.output;
 }
 
+// --score-from N: every method plays frames 0..N-1 (its history builds up) but only the later
+// frames are scored and timed, against references of those frames only. A scored frame equals the
+// same frame of a run that scores everything (same seed, same frames played before it).
+TEST(EvalTest, ScoreFromPlaysTheWarmUpWithoutScoringIt) {
+  TempDir dir;
+  Daemon daemon({"--reference-cache", (dir.path / "cache").string()});
+  auto all = eval_args(daemon.address(), dir.path / "all");
+  all[9] = "4";
+  ASSERT_EQ(run_process(all, 300s).exit_code, 0);
+  auto warm = eval_args(daemon.address(), dir.path / "warm");
+  warm[9] = "4";
+  for (const char* a : {"--score-from", "2"}) warm.push_back(a);
+  const auto result = run_process(warm, 300s);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+
+  const auto doc_all = nlohmann::json::parse(read_file(dir.path / "all" / "results.json"));
+  const auto doc = nlohmann::json::parse(read_file(dir.path / "warm" / "results.json"));
+  EXPECT_EQ(doc["meta"]["score_from"], 2);
+  EXPECT_NE(doc["meta"]["command_line"].get<std::string>().find("--score-from 2"), std::string::npos);
+  EXPECT_EQ(doc["meta"]["references"].size(), 2u) << "no reference for the warm-up frames";
+  const auto frame_of = [](const nlohmann::json& d, const std::string& method, int frame) {
+    for (const auto& run : d["runs"])
+      if (run["method"] == method && !run["equal_time_pt"].get<bool>())
+        for (const auto& f : run["frames"])
+          if (f["frame"] == frame) return f;
+    return nlohmann::json();
+  };
+  for (const auto& run : doc["runs"]) {
+    ASSERT_EQ(run["frames"].size(), 2u) << run["method"];
+    EXPECT_EQ(run["frames"][0]["frame"], 2);
+    EXPECT_EQ(run["frames"][1]["frame"], 3);
+  }
+  ASSERT_FALSE(frame_of(doc, "restir-gather", 3).is_null());
+  EXPECT_EQ(frame_of(doc, "restir-gather", 3)["whole"], frame_of(doc_all, "restir-gather", 3)["whole"])
+      << "the warm-up frames must be played: frame 3 carries their history";
+
+  auto bad = eval_args(daemon.address(), dir.path / "bad");
+  for (const char* a : {"--score-from", "3"}) bad.push_back(a);
+  const auto refused = run_process(bad, k_render_deadline);
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.output.find("--score-from = 3 leaves no frame to score"), std::string::npos) << refused.output;
+  EXPECT_FALSE(fs::exists(dir.path / "bad"));
+}
+
 }  // namespace
 }  // namespace strata::test
