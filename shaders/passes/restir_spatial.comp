@@ -21,9 +21,11 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "restir/restir_limits.h"
 #include "restir/thresholds.h"
 #include "restir/centre_surface.glsl"
+#include "restir/layer_data.h"
 
 layout(set = 0, binding = BINDING_RESERVOIRS_IN, std430) readonly buffer ReservoirsIn { PackedReservoir b_in[]; };
 layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
+layout(set = 0, binding = BINDING_DOMAINS, std430) readonly buffer Domains { GpuDomainRange b_domains[]; };  // restir-multilayer
 // Pixels that draw neighbours at random (without pairs: those without history, which take
 // disocclusion_spatial_neighbors; with pairs: every pixel whose pair does not fill its count) trace
 // rays here. Run among the others, one such pixel holds up every lane of its SIMD group (lavapipe
@@ -60,12 +62,16 @@ void main() {
   vec3 f_centre = b_contribution[index].rgb;
   bool centre_valid = reservoir_valid(centre);
   float c_c = confidence_capped(centre.confidence, confidence_cap_of(b_primary[pixel_index(pixel)]));
-  bool no_history = centre.confidence < 1.5;
+  // restir-multilayer: a front-layer pixel whose hit the previous camera did not see (domain_build's
+  // DOMAIN_DISOCCLUDED) counts as one without history even where a deep domain's splat reached it:
+  // that history is capped like any other, so the pixel keeps the disocclusion boost that
+  // restir-splat gives it, and the deep history comes on top (ML Fig. 9 compares the two).
+  bool no_history = centre.confidence < 1.5 || (u_restir.layers > 1u && (b_domains[index].flags & DOMAIN_DISOCCLUDED) != 0u);
   CentreSurface here = centre_surface(b_primary[pixel_index(pixel)]);
   // A pixel whose reservoir holds no history (disoccluded, or the first frame: its confidence is the
-  // canonical sample's alone) takes disocclusion_spatial_neighbors. Confidence depends on geometry
-  // only (backprojection and the neighbour filter), never on a sample, so the choice of domains
-  // stays independent of the samples.
+  // canonical sample's alone) takes disocclusion_spatial_neighbors. Confidence and the disocclusion
+  // flag depend on geometry only (backprojection, the neighbour filter, the previous camera's view),
+  // never on a sample, so the choice of domains stays independent of the samples.
   uint wanted = u_restir.spatial_neighbors;
   if (no_history && u_restir.disocclusion_spatial_neighbors > 0u) wanted = u_restir.disocclusion_spatial_neighbors;
   uint slots = here.valid ? min(wanted, RESTIR_MAX_SPATIAL_NEIGHBORS) : 0u;

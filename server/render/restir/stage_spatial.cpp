@@ -121,6 +121,7 @@ class SpatialStage : public Stage {
     if (resampling) {
       extra.push_back(storage(BINDING_SPATIAL_LIST, Access::read_write, list_));
       extra.push_back(storage(BINDING_SPATIAL_ARGS, Access::read_write, args_));
+      extra.push_back(history_current(BINDING_DOMAINS, Access::read, state_.domain_ranges));  // DOMAIN_DISOCCLUDED (multilayer)
     }
     return restir_resources(state_, history_current(BINDING_RESERVOIRS_OUT, resampling ? Access::write : Access::read, state_.history),
                             std::move(extra));
