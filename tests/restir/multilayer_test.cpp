@@ -2,6 +2,8 @@
 // the hand-built two-plane scene of tests/support (test::two_planes):
 // - a deep layer's own integral (ML Eq. 3 with the camera's visibility left out) matches the back
 //   plane rendered with the front quad removed, with the unbiasedness harness's tolerance;
+// - it holds only its domain (ML Eq. 4): where the front quad covers part of a pixel, or thin
+//   stripes lie inside the back plane's depth range, it matches the hidden part of each pixel;
 // - domain propagation (ML 4.3): while the front quad jumps between two places, the back plane's
 //   domains are active exactly where it is hidden and was visible the frame before, and the pixels
 //   it reappears in are covered by splats from those domains;
@@ -11,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
