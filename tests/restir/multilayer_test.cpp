@@ -52,6 +52,15 @@ uint64_t count_pixels(uint32_t size, const std::function<bool(uint32_t, uint32_t
   return n;
 }
 
+// sum += w * x, pixel by pixel; an empty sum starts at zero (means and differences over frames).
+void add_scaled(image::Image& sum, const image::Image& x, float w) {
+  if (sum.rgba.empty()) {
+    sum = x;
+    std::fill(sum.rgba.begin(), sum.rgba.end(), 0.0f);
+  }
+  for (size_t i = 0; i < sum.rgba.size(); ++i) sum.rgba[i] += w * x.rgba[i];
+}
+
 render::RenderSettings multilayer_settings(uint32_t size, uint32_t seed) {
   render::RenderSettings rs;
   rs.width = size;
@@ -100,11 +109,8 @@ TEST_F(MultilayerDomains, DeepLayerEstimatesItsHiddenSurface) {
         for (float v : res.image.rgba) ASSERT_TRUE(std::isfinite(v)) << mode << " frame " << f;
         if (f == 0) continue;  // active: no deep domain yet
         EXPECT_EQ(res.stats.reuse.at("domains.active_layer_1"), uint64_t(size) * size) << mode << " frame " << f;
-        if (mean.rgba.empty()) mean = res.image;
-        else
-          for (size_t i = 0; i < mean.rgba.size(); ++i) mean.rgba[i] += res.image.rgba[i];
+        add_scaled(mean, res.image, 1.0f / float(frames - 1));
       }
-      for (float& v : mean.rgba) v /= float(frames - 1);
       method.add(mean);
     }
     BiasReport report = compare_to_reference(method, reference, 4);
@@ -181,11 +187,8 @@ TEST_F(MultilayerDomains, DeepLayerHoldsOnlyItsDomain) {
       const auto all = render::Renderer(gpu_context(), bare, rs).render(stripes_frame(bare, f), 0).image;
       rs.seed += 4;
       const auto seen = render::Renderer(gpu_context(), s, rs).render(stripes_frame(s, f), 0).image;
-      if (hidden.rgba.empty()) {
-        hidden = all;
-        std::fill(hidden.rgba.begin(), hidden.rgba.end(), 0.0f);
-      }
-      for (size_t i = 0; i < hidden.rgba.size(); ++i) hidden.rgba[i] += (all.rgba[i] - seen.rgba[i]) / float(frames - 1);
+      add_scaled(hidden, all, 1.0f / float(frames - 1));
+      add_scaled(hidden, seen, -1.0f / float(frames - 1));
     }
     reference.add(hidden);
   }
@@ -201,11 +204,8 @@ TEST_F(MultilayerDomains, DeepLayerHoldsOnlyItsDomain) {
       for (float v : res.image.rgba) ASSERT_TRUE(std::isfinite(v)) << "frame " << f;
       if (f == 0) continue;  // no deep domain yet
       ASSERT_EQ(res.stats.reuse.at("domains.active_layer_1"), behind) << "frame " << f << ": every hidden domain active";
-      if (mean.rgba.empty()) mean = res.image;
-      else
-        for (size_t i = 0; i < mean.rgba.size(); ++i) mean.rgba[i] += res.image.rgba[i];
+      add_scaled(mean, res.image, 1.0f / float(frames - 1));
     }
-    for (float& v : mean.rgba) v /= float(frames - 1);
     method.add(mean);
   }
   BiasReport report = compare_to_reference(method, reference, 2);
