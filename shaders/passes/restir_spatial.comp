@@ -67,6 +67,10 @@ void main() {
   // that history is capped like any other, so the pixel keeps the disocclusion boost that
   // restir-splat gives it, and the deep history comes on top (ML Fig. 9 compares the two).
   bool no_history = centre.confidence < 1.5 || (u_restir.layers > 1u && (b_domains[index].flags & DOMAIN_DISOCCLUDED) != 0u);
+  // A pixel whose surface switched LoD level this frame keeps the boost too, where tau carried its
+  // history across the switch: history resampled for the other level's targets (LOD 4.4).
+  GpuPrimaryHit own = b_primary[pixel_index(pixel)];
+  if ((own.flags & PRIMARY_HIT) != 0u && (instance_changes(own.instance) & INSTANCE_CHANGED_LOD) != 0u) no_history = true;
   CentreSurface here = centre_surface(b_primary[pixel_index(pixel)]);
   // A pixel whose reservoir holds no history (disoccluded, or the first frame: its confidence is the
   // canonical sample's alone) takes disocclusion_spatial_neighbors. Confidence and the disocclusion

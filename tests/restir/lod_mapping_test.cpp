@@ -7,7 +7,7 @@
 // - lod-cliff (one UV chart): points map uniquely, and the suffixes of mapped reconnection vertices
 //   replay (their direction fixed to the object); chess (lathe seams): nine in ten map or better;
 //   the UV structure's memory is reported in its own group and is absent for a scene without LoD
-//   groups and for methods without history;
+//   groups and for methods without history; the switched pixels keep the spatial boost;
 // - numerics: a switch every frame with a teleporting camera, on chess and overlap-uv: all finite.
 #include <cmath>
 #include <cstdio>
@@ -107,6 +107,22 @@ TEST_F(LodMapping, SuffixesReplayAcrossTheSwitch) {
               (unsigned long long)replayed, (unsigned long long)failed, (unsigned long long)cliff.reuse.at("lod.mappings"));
   EXPECT_GT(replayed, 0u);
   EXPECT_LT(failed * 10, replayed) << "fewer than one replay in ten fails";
+}
+
+// A pixel whose surface switched level keeps the spatial boost of pixels without history
+// (disocclusion_spatial_neighbors, restir_spatial.comp) although tau carried its history across:
+// lod-cliff's mapped history is worth less than it costs there (BENCHMARKS, "Fourth part"). At the
+// switch the terrain's pixels then draw 6 neighbours, not 2: with the rule dropped the default run
+// equals the run without boost up to the few pixels that have no history at all.
+TEST_F(LodMapping, SwitchedPixelsKeepTheSpatialBoost) {
+  const Outcome boost = render_switch("lod-cliff", "restir-gather", [](render::RestirOptions&) {});
+  const Outcome plain = render_switch("lod-cliff", "restir-gather", [](render::RestirOptions& o) { o.disocclusion_spatial_neighbors = 2; });
+  const Outcome off = render_switch("lod-cliff", "restir-gather", [](render::RestirOptions& o) { o.lod_mapping = "off"; });
+  std::printf("lod-cliff restir-gather at the switch: spatial shifts %llu (boost 2 -> 2: %llu; lod_mapping off: %llu), mappings %llu\n",
+              (unsigned long long)boost.reuse.at("spatial.shifts"), (unsigned long long)plain.reuse.at("spatial.shifts"),
+              (unsigned long long)off.reuse.at("spatial.shifts"), (unsigned long long)boost.reuse.at("lod.mappings"));
+  EXPECT_GT(boost.reuse.at("lod.mappings"), 0u);
+  EXPECT_GT(boost.reuse.at("spatial.shifts"), 2 * plain.reuse.at("spatial.shifts"));
 }
 
 // chess: lathed pieces whose charts close on a seam, three levels from make_lod_chain. Both shift
