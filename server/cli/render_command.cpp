@@ -1,5 +1,6 @@
 // `stratad render`: renders a scene's default animation in-process (no network) and writes EXR +
-// PNG per frame and frames.json with per-pass GPU milliseconds and counters for each frame.
+// PNG per frame and frames.json with per-pass GPU milliseconds and counters for each frame; with
+// --domain-map also restir-multilayer's domain map per frame (the coverage dashboard's image).
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include "cli/commands.h"
 #include "gpu/context.h"
 #include "image/image.h"
+#include "render/method_table.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"
 
@@ -26,6 +28,7 @@ struct RenderArgs {
   bool accumulate = false;
   float exposure = 0.0f;
   bool validation = false;
+  bool domain_map = false;
   render::RenderSettings settings;
 };
 
@@ -38,6 +41,8 @@ std::string frame_name(uint32_t f) {
 int run_render(const RenderArgs& a) {
   namespace fs = std::filesystem;
   a.settings.validate();
+  if (a.domain_map && !render::method_spec(a.settings.method).layers)
+    throw std::invalid_argument("--domain-map: method " + a.settings.method + " keeps no pixel layers (restir-multilayer does)");
   scene::Scene scene = scene::load_scene(a.scene);
   gpu::Context ctx({a.device, a.validation});
   render::Renderer renderer(ctx, scene, a.settings);
@@ -61,6 +66,13 @@ int run_render(const RenderArgs& a) {
       image::write_png_preview(base + ".png", r.image, a.exposure);
     }
     nlohmann::json j = render::to_json(r.stats);
+    if (a.domain_map) {
+      const std::string name = frame_name(f) + "_domains.png";  // as `strata stream --encodings domain` names it
+      const render::DomainMap m = renderer.domain_map().value();
+      const std::vector<uint8_t> png = image::encode_png_rgb8(render::domain_map_rgb(m), m.width, m.height);
+      std::ofstream(fs::path(a.out) / name, std::ios::binary).write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+      j["files"] = {{"domain_map", name}};
+    }
     j["scene_frame"] = f;
     j["accumulated_spp"] = r.accumulated_spp;
     doc["frames"].push_back(j);
@@ -138,6 +150,9 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_option("--exposure", a->exposure, "PNG preview exposure in stops")->capture_default_str();
   cmd->add_flag("--accumulate", a->accumulate, "accumulate all frames into one reference image of --first-frame");
   cmd->add_flag("--validation", a->validation, "enable the Khronos validation layer");
+  cmd->add_flag("--domain-map", a->domain_map,
+                "restir-multilayer: also write each frame's domain map, frame_NNNN_domains.png (red: 32 x active domains, "
+                "green: disoccluded, blue: covered)");
   return [a] { return run_render(*a); };
 }
 

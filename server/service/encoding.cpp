@@ -30,14 +30,7 @@ v1::Image encode_image(const image::Image& img, v1::ImageEncoding encoding, floa
 
 v1::Image encode_domain_map(const render::DomainMap& map) {
   const auto t0 = std::chrono::steady_clock::now();
-  std::vector<uint8_t> rgb(map.pixels.size() * 3);
-  for (size_t i = 0; i < map.pixels.size(); ++i) {
-    const uint8_t v = map.pixels[i];
-    rgb[3 * i + 0] = uint8_t(std::min(255u, 32u * (v & render::DomainMap::k_active_mask)));
-    rgb[3 * i + 1] = (v & render::DomainMap::k_disoccluded) ? 255 : 0;
-    rgb[3 * i + 2] = (v & render::DomainMap::k_covered) ? 255 : 0;
-  }
-  const std::vector<uint8_t> bytes = image::encode_png_rgb8(rgb, map.width, map.height);
+  const std::vector<uint8_t> bytes = image::encode_png_rgb8(render::domain_map_rgb(map), map.width, map.height);
   v1::Image out;
   out.set_encoding(v1::IMAGE_ENCODING_DOMAIN_MAP);
   out.set_width(map.width);

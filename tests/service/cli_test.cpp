@@ -1,5 +1,6 @@
 // The command-line client against a stratad process: `strata stream` reproduces `stratad render`
-// byte for byte for the same seed, follows a camera/transform/LoD script, and reports errors.
+// byte for byte for the same seed (the domain map too), follows a camera/transform/LoD script, and
+// reports errors.
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -156,6 +157,38 @@ TEST(CliTest, StrataStreamSendsRestirOptionsAndLogsReuse) {
                                k_render_deadline);
   EXPECT_NE(spp.exit_code, 0);
   EXPECT_NE(spp.output.find("CreateSession: INVALID_ARGUMENT: options.spp = 4"), std::string::npos) << spp.output;
+}
+
+// `stratad render --domain-map` writes restir-multilayer's domain map per frame, byte for byte as
+// `strata stream --encodings domain` receives it, and refuses a method without pixel layers.
+TEST(CliTest, StratadRenderWritesTheDomainMapAsStreamReceivesIt) {
+  TempDir dir;
+  Daemon daemon;
+  const std::vector<std::string> common = {"--scene", "carousel", "--method", "restir-multilayer", "--width", "16", "--height", "16",
+                                           "--frames", "3", "--seed", "5", "--max-depth", "3"};
+  std::vector<std::string> render = {stratad_path(), "render", "--domain-map", "--out", (dir.path / "render").string()};
+  render.insert(render.end(), common.begin(), common.end());
+  const auto r = run_process(render, k_render_deadline);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::vector<std::string> stream = {strata_path(), "stream", "--server", daemon.address(), "--encodings", "exr,png,domain",
+                                     "--out", (dir.path / "stream").string()};
+  stream.insert(stream.end(), common.begin(), common.end());
+  const auto s = run_process(stream, k_render_deadline);
+  ASSERT_EQ(s.exit_code, 0) << s.output;
+  for (const char* stem : {"frame_0000", "frame_0001", "frame_0002"}) {
+    SCOPED_TRACE(stem);
+    const std::string map = read_file(dir.path / "render" / (std::string(stem) + "_domains.png"));
+    ASSERT_FALSE(map.empty());
+    EXPECT_TRUE(read_file(dir.path / "stream" / (std::string(stem) + "_domains.png")) == map) << "domain map differs from the stream's";
+  }
+  const auto doc = nlohmann::json::parse(read_file(dir.path / "render" / "frames.json"));
+  EXPECT_EQ(doc["frames"][2]["files"]["domain_map"], "frame_0002_domains.png");
+
+  const auto pt = run_process({stratad_path(), "render", "--scene", "cornell", "--method", "pt", "--width", "16", "--height", "16",
+                               "--domain-map", "--out", (dir.path / "pt").string()},
+                              k_render_deadline);
+  EXPECT_NE(pt.exit_code, 0);
+  EXPECT_NE(pt.output.find("--domain-map: method pt keeps no pixel layers"), std::string::npos) << pt.output;
 }
 
 TEST(CliTest, StrataStreamReportsTheServersError) {

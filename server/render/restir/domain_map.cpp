@@ -1,5 +1,7 @@
 #include "render/restir/domain_map.h"
 
+#include <algorithm>
+
 #include "restir/domain.h"
 #include "restir/layer_data.h"
 
@@ -21,6 +23,17 @@ DomainMap read_domain_map(const gpu::Buffer& ranges, uint32_t width, uint32_t he
       map.pixels[size_t(y) * width + x] = v;
     }
   return map;
+}
+
+std::vector<uint8_t> domain_map_rgb(const DomainMap& map) {
+  std::vector<uint8_t> rgb(map.pixels.size() * 3);
+  for (size_t i = 0; i < map.pixels.size(); ++i) {
+    const uint8_t v = map.pixels[i];
+    rgb[3 * i + 0] = uint8_t(std::min(255u, 32u * (v & DomainMap::k_active_mask)));
+    rgb[3 * i + 1] = (v & DomainMap::k_disoccluded) ? 255 : 0;
+    rgb[3 * i + 2] = (v & DomainMap::k_covered) ? 255 : 0;
+  }
+  return rgb;
 }
 
 }  // namespace strata::render

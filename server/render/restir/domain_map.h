@@ -21,4 +21,8 @@ struct DomainMap {
 // Reads `ranges` (GpuDomainRange per domain, restir/layer_data.h) back and summarizes each pixel.
 DomainMap read_domain_map(const gpu::Buffer& ranges, uint32_t width, uint32_t height, uint32_t layers);
 
+// The map as RGB8 pixels for the coverage dashboard (the proto's IMAGE_ENCODING_DOMAIN_MAP): red
+// 32 x the active domains, green where the front layer was disoccluded, blue where it was covered.
+std::vector<uint8_t> domain_map_rgb(const DomainMap& map);
+
 }  // namespace strata::render
