@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
@@ -70,7 +71,9 @@ int run_render(const RenderArgs& a) {
       const std::string name = frame_name(f) + "_domains.png";  // as `strata stream --encodings domain` names it
       const render::DomainMap m = renderer.domain_map().value();
       const std::vector<uint8_t> png = image::encode_png_rgb8(render::domain_map_rgb(m), m.width, m.height);
-      std::ofstream(fs::path(a.out) / name, std::ios::binary).write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+      std::ofstream out(fs::path(a.out) / name, std::ios::binary);
+      out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+      if (!out) throw std::runtime_error("--domain-map: cannot write " + (fs::path(a.out) / name).string());
       j["files"] = {{"domain_map", name}};
     }
     j["scene_frame"] = f;

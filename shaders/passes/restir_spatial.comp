@@ -71,7 +71,7 @@ void main() {
   // history across the switch: history resampled for the other level's targets (LOD 4.4).
   GpuPrimaryHit own = b_primary[pixel_index(pixel)];
   if ((own.flags & PRIMARY_HIT) != 0u && (instance_changes(own.instance) & INSTANCE_CHANGED_LOD) != 0u) no_history = true;
-  CentreSurface here = centre_surface(b_primary[pixel_index(pixel)]);
+  CentreSurface here = centre_surface(own);
   // A pixel whose reservoir holds no history (disoccluded, or the first frame: its confidence is the
   // canonical sample's alone) takes disocclusion_spatial_neighbors. Confidence and the disocclusion
   // flag depend on geometry only (backprojection, the neighbour filter, the previous camera's view),
