@@ -224,7 +224,7 @@ void print_summary(const report::Report& rep) {
     if (run.equal_time_pt) continue;
     const report::Errors e = mean_errors(run);
     std::cout << run.scene << "  " << run.method << "  median " << median_gpu_ms(run) << " ms/frame  relmse " << e.relmse
-              << "  mape " << e.mape << "  flip " << e.flip << "\n";
+              << " (luminance " << e.relmse_luminance << ")  mape " << e.mape << "  flip " << e.flip << "\n";
   }
   for (const auto& et : rep.equal_time)
     std::cout << et.scene << "  equal time: " << et.method << " (" << et.method_median_ms << " ms) vs pt at " << et.pt_spp

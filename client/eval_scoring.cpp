@@ -16,6 +16,7 @@ double ratio(double a, double b) {
 report::Errors errors(const image::Image& test, const image::Image& ref, metrics::Mask mask, std::vector<float>* flip_map) {
   report::Errors e;
   e.relmse = metrics::relmse(test, ref, mask);
+  e.relmse_luminance = metrics::relmse_luminance(test, ref, mask);
   e.mape = metrics::mape(test, ref, mask);
   metrics::HdrFlipResult flip = metrics::hdr_flip(test, ref, mask);
   e.flip = flip.mean;
@@ -61,11 +62,13 @@ report::Errors mean_errors(const report::Run& run) {
   if (run.frames.empty()) return e;
   for (const auto& f : run.frames) {
     e.relmse += f.whole.relmse;
+    e.relmse_luminance += f.whole.relmse_luminance;
     e.mape += f.whole.mape;
     e.flip += f.whole.flip;
   }
   const double n = double(run.frames.size());
   e.relmse /= n;
+  e.relmse_luminance /= n;
   e.mape /= n;
   e.flip /= n;
   return e;

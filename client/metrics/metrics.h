@@ -28,6 +28,11 @@ using Mask = std::span<const uint8_t>;
 // Relative MSE on RGB, per channel: mean over pixels and channels of (t - r)^2 / (r^2 + eps).
 // eps must be finite and > 0 (MetricError otherwise).
 double relmse(const image::Image& test, const image::Image& reference, Mask mask = {}, double eps = 1e-2);
+// Relative MSE of the luminance Y = 0.2126 R + 0.7152 G + 0.0722 B: mean over pixels of
+// (Y_t - Y_r)^2 / (Y_r^2 + eps). Beside relmse it separates colour noise (a pixel of the right
+// brightness in the wrong hue: a luminance-target resampler holding one path of one light's colour)
+// from brightness noise. eps as for relmse.
+double relmse_luminance(const image::Image& test, const image::Image& reference, Mask mask = {}, double eps = 1e-2);
 // Mean absolute percentage error on RGB: mean of |t - r| / (|r| + eps); eps as for relmse.
 double mape(const image::Image& test, const image::Image& reference, Mask mask = {}, double eps = 1e-2);
 

@@ -1,4 +1,5 @@
-// RelMSE and MAPE on linear RGB (alpha ignored), optionally restricted to a pixel mask.
+// RelMSE (of RGB and of the luminance) and MAPE on linear RGB (alpha ignored), optionally restricted
+// to a pixel mask.
 #include <cmath>
 
 #include "metrics/metrics.h"
@@ -39,6 +40,22 @@ double relmse(const image::Image& test, const image::Image& reference, Mask mask
     const double d = t - r;
     return d * d / (r * r + eps);
   });
+}
+
+double relmse_luminance(const image::Image& test, const image::Image& reference, Mask mask, double eps) {
+  check_eps(eps);
+  detail::check_inputs(test, reference, mask);
+  const size_t n = size_t(reference.width) * reference.height;
+  auto luminance = [](const float* p) { return 0.2126 * double(p[0]) + 0.7152 * double(p[1]) + 0.0722 * double(p[2]); };
+  double sum = 0.0;
+  uint64_t pixels = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (!mask.empty() && mask[i] == 0) continue;
+    const double yt = luminance(&test.rgba[4 * i]), yr = luminance(&reference.rgba[4 * i]);
+    sum += (yt - yr) * (yt - yr) / (yr * yr + eps);
+    ++pixels;
+  }
+  return pixels > 0 ? sum / double(pixels) : 0.0;
 }
 
 double mape(const image::Image& test, const image::Image& reference, Mask mask, double eps) {

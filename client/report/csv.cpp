@@ -10,7 +10,7 @@ namespace {
 
 constexpr std::string_view kHeader =
     "scene,method,spp,equal_time_pt,frame,gpu_ms,cumulative_ms,relmse,mape,flip,"
-    "masked_pixels,masked_relmse,masked_mape,masked_flip";
+    "masked_pixels,masked_relmse,masked_mape,masked_flip,relmse_luminance,masked_relmse_luminance";
 
 // RFC 4180: a field with a comma, a quote, CR or LF (or edge spaces, which readers may trim) is
 // quoted, and its quotes doubled.
@@ -49,6 +49,10 @@ void append_row(std::string& out, const Run& run, const FrameResult& f) {
   } else {
     out += ",,,";
   }
+  out += ',';
+  out += format_number(f.whole.relmse_luminance);
+  out += ',';
+  if (f.has_masked) out += format_number(f.masked.relmse_luminance);
   out += "\n";
 }
 

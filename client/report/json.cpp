@@ -7,7 +7,7 @@ namespace strata::report {
 namespace {
 
 nlohmann::json errors_json(const Errors& e) {
-  return {{"relmse", e.relmse}, {"mape", e.mape}, {"flip", e.flip}};
+  return {{"relmse", e.relmse}, {"mape", e.mape}, {"flip", e.flip}, {"relmse_luminance", e.relmse_luminance}};
 }
 
 nlohmann::json frame_json(const FrameResult& f) {

@@ -16,6 +16,7 @@ namespace strata::report {
 // Error of one image against the reference, over all pixels and over the disoccluded ones.
 struct Errors {
   double relmse = 0.0, mape = 0.0, flip = 0.0;
+  double relmse_luminance = 0.0;  // RelMSE of the luminance alone (metrics::relmse_luminance)
 };
 
 struct FrameResult {

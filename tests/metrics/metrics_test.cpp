@@ -71,6 +71,22 @@ TEST(RelMse, EpsControlsTheBlackReferenceTerm) {
   EXPECT_TRUE(contains(metric_error_of([&] { relmse(test, ref, {}, -1.0); }), "eps"));
 }
 
+// The luminance RelMSE sees a brightness error and not a pure hue error: on the 2x2 pair pixel 0's
+// red +0.5 is a luminance error of 0.2126 * 0.5, pixel 2's 0.1 of 0.02126 (reference 0), pixel 3's
+// blue +0.5 of 0.0722 * 0.5; and a test that swaps luminance between channels at equal Y scores 0.
+TEST(RelMseLuminance, TwoByTwoByHandAndHueAlone) {
+  const Pair p = two_by_two();
+  const double d0 = 0.2126 * 0.5, d2 = 0.2126 * 0.1, d3 = 0.0722 * 0.5;
+  const double expected = (d0 * d0 / (1.0 + 1e-2) + d2 * d2 / 1e-2 + d3 * d3 / (0.25 + 1e-2)) / 4.0;
+  EXPECT_NEAR(relmse_luminance(p.test, p.reference), expected, 1e-7);
+
+  image::Image ref = gray(1, 1, 1.0f), hue = gray(1, 1, 0.0f);
+  set(hue, 0, 0, 1.0f / 0.2126f, 0.0f, 0.0f);  // all red, same luminance as the grey reference
+  EXPECT_NEAR(relmse_luminance(hue, ref), 0.0, 1e-10);
+  EXPECT_GT(relmse(hue, ref), 1.0);
+  EXPECT_TRUE(contains(metric_error_of([&] { relmse_luminance(hue, ref, {}, 0.0); }), "eps"));
+}
+
 TEST(Mape, TwoByTwoByHand) {
   const Pair p = two_by_two();
   // eps = 0.01:

@@ -55,10 +55,10 @@ Run one_frame_run(std::string scene, std::string method, bool masked) {
   f.gpu_ms = 1.5;
   f.cumulative_ms = 6.0;
   f.pass_ms = {{"trace", 1.0}, {"shade", 0.5}};
-  f.whole = {0.1, 0.25, 0.125};
+  f.whole = {0.1, 0.25, 0.125, 0.05};
   f.has_masked = masked;
   if (masked) {
-    f.masked = {0.5, 0.75, 0.0625};
+    f.masked = {0.5, 0.75, 0.0625, 0.375};
     f.masked_pixels = 42;
   }
   return Run{std::move(scene), std::move(method), 2, false, "", {f}};
@@ -70,15 +70,16 @@ TEST(ReportCsv, HeaderAndOneRowPerRunAndFrame) {
   ASSERT_EQ(lines.size(), 1u + 2 * 3 * 8);
   EXPECT_EQ(lines[0],
             "scene,method,spp,equal_time_pt,frame,gpu_ms,cumulative_ms,relmse,mape,flip,"
-            "masked_pixels,masked_relmse,masked_mape,masked_flip");
-  // Frame 0 has no disoccluded pixels: the four masked cells are empty.
+            "masked_pixels,masked_relmse,masked_mape,masked_flip,relmse_luminance,masked_relmse_luminance");
+  // Frame 0 has no disoccluded pixels: the five masked cells are empty.
   EXPECT_TRUE(lines[1].starts_with("cornell,restir-gather,1,false,0,"));
-  EXPECT_TRUE(lines[1].ends_with(",,,,")) << lines[1];
+  EXPECT_NE(lines[1].find(",,,,"), std::string::npos) << lines[1];
+  EXPECT_TRUE(lines[1].ends_with(",")) << lines[1];
   EXPECT_TRUE(lines[2].starts_with("cornell,restir-gather,1,false,1,"));
   EXPECT_NE(lines[2].find(",110,"), std::string::npos) << lines[2];  // masked_pixels of frame 1
   EXPECT_TRUE(lines[17].starts_with("cornell,pt,4,true,0,"));
   EXPECT_TRUE(lines[25].starts_with("chess,restir-gather,1,false,0,"));
-  for (const auto& line : lines) EXPECT_EQ(std::count(line.begin(), line.end(), ','), 13) << line;
+  for (const auto& line : lines) EXPECT_EQ(std::count(line.begin(), line.end(), ','), 15) << line;
 }
 
 TEST(ReportCsv, ExactValuesMaskedCellsAndSceneGrouping) {
@@ -88,9 +89,9 @@ TEST(ReportCsv, ExactValuesMaskedCellsAndSceneGrouping) {
   report.runs.push_back(one_frame_run("a", "restir-di", false));
   const auto lines = split_lines(to_csv(report));
   ASSERT_EQ(lines.size(), 4u);
-  EXPECT_EQ(lines[1], "a,pt,2,false,3,1.5,6,0.1,0.25,0.125,42,0.5,0.75,0.0625");
-  EXPECT_EQ(lines[2], "a,restir-di,2,false,3,1.5,6,0.1,0.25,0.125,,,,");  // grouped by scene
-  EXPECT_EQ(lines[3], "b,restir-gather,2,false,3,1.5,6,0.1,0.25,0.125,,,,");
+  EXPECT_EQ(lines[1], "a,pt,2,false,3,1.5,6,0.1,0.25,0.125,42,0.5,0.75,0.0625,0.05,0.375");
+  EXPECT_EQ(lines[2], "a,restir-di,2,false,3,1.5,6,0.1,0.25,0.125,,,,,0.05,");  // grouped by scene
+  EXPECT_EQ(lines[3], "b,restir-gather,2,false,3,1.5,6,0.1,0.25,0.125,,,,,0.05,");
 }
 
 TEST(ReportCsv, QuotesFieldsThatNeedIt) {

@@ -64,7 +64,7 @@ void check_results(const fs::path& out) {
   const auto& header = rows[0];
   std::map<std::string, size_t> col;
   for (size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
-  for (const char* c : {"scene", "method", "spp", "equal_time_pt", "frame", "gpu_ms", "relmse", "mape", "flip"})
+  for (const char* c : {"scene", "method", "spp", "equal_time_pt", "frame", "gpu_ms", "relmse", "mape", "flip", "relmse_luminance"})
     ASSERT_TRUE(col.count(c)) << "no column " << c;
   std::map<std::string, std::set<std::string>> frames_by_run;
   for (size_t r = 1; r < rows.size(); ++r) {
@@ -72,7 +72,7 @@ void check_results(const fs::path& out) {
     ASSERT_EQ(row.size(), header.size()) << "row " << r;
     EXPECT_EQ(row[col["scene"]], "cornell");
     frames_by_run[row[col["method"]] + (row[col["equal_time_pt"]] == "true" ? " (equal time)" : "")].insert(row[col["frame"]]);
-    for (const char* c : {"gpu_ms", "cumulative_ms", "relmse", "mape", "flip"}) {
+    for (const char* c : {"gpu_ms", "cumulative_ms", "relmse", "mape", "flip", "relmse_luminance"}) {
       char* end = nullptr;
       const double v = std::strtod(row[col[c]].c_str(), &end);
       EXPECT_TRUE(end && *end == '\0' && !row[col[c]].empty()) << c << " = '" << row[col[c]] << "' in row " << r;
