@@ -70,10 +70,7 @@ int run_render(const RenderArgs& a) {
     if (a.domain_map) {
       const std::string name = frame_name(f) + "_domains.png";  // as `strata stream --encodings domain` names it
       const render::DomainMap m = renderer.domain_map().value();
-      const std::vector<uint8_t> png = image::encode_png_rgb8(render::domain_map_rgb(m), m.width, m.height);
-      std::ofstream out(fs::path(a.out) / name, std::ios::binary);
-      out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
-      if (!out) throw std::runtime_error("--domain-map: cannot write " + (fs::path(a.out) / name).string());
+      image::write_png_rgb8(fs::path(a.out) / name, render::domain_map_rgb(m), m.width, m.height);
       j["files"] = {{"domain_map", name}};
     }
     j["scene_frame"] = f;

@@ -80,6 +80,10 @@ std::vector<uint8_t> encode_png_preview(const Image& img, float exposure_stops) 
   return encode_png_rgb8(rgb, img.width, img.height);
 }
 
+void write_png_rgb8(const std::filesystem::path& path, std::span<const uint8_t> rgb, uint32_t width, uint32_t height) {
+  detail::write_file_bytes(path, encode_png_rgb8(rgb, width, height), "write_png_rgb8");
+}
+
 void write_png_preview(const std::filesystem::path& path, const Image& img, float exposure_stops) {
   detail::write_file_bytes(path, encode_png_preview(img, exposure_stops), "write_png_preview");
 }
