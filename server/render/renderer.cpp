@@ -85,6 +85,8 @@ void RestirOptions::validate() const {
   require(layers <= LAYERS_MAX, "restir.layers = " + std::to_string(layers) + " is outside " + range(0u, LAYERS_MAX) + " (0 = auto)");
   require(hole_fill_radius <= RESTIR_MAX_HOLE_FILL_RADIUS,
           "restir.hole_fill_radius = " + std::to_string(hole_fill_radius) + " is outside " + range(0u, RESTIR_MAX_HOLE_FILL_RADIUS));
+  require(silhouette_band <= RESTIR_MAX_SILHOUETTE_BAND,
+          "restir.silhouette_band = " + std::to_string(silhouette_band) + " is outside " + range(0u, RESTIR_MAX_SILHOUETTE_BAND) + " (0 = off)");
   require(layer_mode == "active" || layer_mode == "uniform" || layer_mode == "no-depth-ranges",
           "restir.layer_mode = '" + layer_mode + "' is not one of: active, uniform, no-depth-ranges");
   require(disocclusion_initial_candidates <= RESTIR_MAX_INITIAL_CANDIDATES,

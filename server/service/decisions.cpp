@@ -220,6 +220,15 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                        : eff.layer_mode() == v1::LAYER_MODE_UNIFORM
                            ? "layer_mode uniform keeps every layer active: nothing to fill"
                            : "deep domains within this radius of a propagated one sample too, without propagating (ML 4.3; the paper uses 3)"));
+    out.push_back(make("silhouette_band", asked(req.has_silhouette_band(), u(req.silhouette_band())), u(eff.silhouette_band()),
+                       method.layers && eff.layer_mode() == v1::LAYER_MODE_ACTIVE && eff.silhouette_band() > 0,
+                       !method.layers ? not_layers
+                       : eff.layer_mode() != v1::LAYER_MODE_ACTIVE
+                           ? "only layer_mode active has dormant domains (the validation variants are the ML paper's)"
+                       : eff.silhouette_band() == 0
+                           ? "off: every activated deep domain samples (ML 4.3)"
+                           : "deep domains farther than this from a silhouette of the front layer are tracked (their representative hits "
+                             "propagate) but sample nothing until an edge comes this near (not in the ML paper; docs/BENCHMARKS.md)"));
     out.push_back(make("layer_mode", asked(req.has_layer_mode(), layer_mode_name(req.layer_mode())), layer_mode_name(eff.layer_mode()),
                        method.layers,
                        !method.layers ? not_layers

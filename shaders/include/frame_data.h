@@ -121,7 +121,8 @@ CONST_DEF uint COUNTER_LOD_FAIL_DEGENERATE = 65u;   // ... a degenerate UV trian
 CONST_DEF uint COUNTER_LOD_UV_RAYS = 66u;           // UV-space queries
 CONST_DEF uint COUNTER_LOD_REFUSED = 67u;           // points on another level that were not mapped (mapping off)
 CONST_DEF uint COUNTER_DISOCCLUDED_HELD = 68u;     // restir-multilayer: disoccluded pixels whose hit an active previous deep domain's depth range held
-CONST_DEF uint COUNTER_COUNT = 69u;
+CONST_DEF uint COUNTER_DOMAINS_DORMANT = 69u;      // restir-multilayer: propagated deep domains far from every silhouette (tracked, not sampled)
+CONST_DEF uint COUNTER_COUNT = 70u;
 
 STRATA_NAMESPACE_END
 

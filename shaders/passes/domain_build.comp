@@ -16,6 +16,9 @@
 // render/disocclusion.h), or its object changed LoD level; not when it fell outside the previous image.
 // Of those, the ones an active deep domain of the previous pixel they fall in held in its depth range
 // are counted as held (the activation's coverage, ML Table 1's "Domain Effectiveness").
+// With silhouette_band > 0, the front layer's silhouettes are flagged (DOMAIN_SILHOUETTE: a
+// 4-neighbour's centre ray sees another instance, nothing, or a depth more than
+// SILHOUETTE_DEPTH_RATIO apart), for domain_fill's silhouette band.
 // A census of every fourth pixel in each direction walks all k layers, so that the frame reports how
 // many deep domains a uniform k-layer scheme would keep (ML Table 1) without walking every pixel.
 #extension GL_EXT_ray_query : require
@@ -80,6 +83,19 @@ uint deepest_needed(uvec2 pixel) {
         if (dx * dx + dy * dy <= r * r && marked(ivec2(pixel) + ivec2(dx, dy), i)) return i;
   }
   return 0u;
+}
+
+bool silhouette(uvec2 pixel, GpuPrimaryHit front) {
+  const ivec2 steps[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
+  for (uint j = 0u; j < 4u; ++j) {
+    ivec2 q = ivec2(pixel) + steps[j];
+    if (!in_image(q)) continue;
+    GpuPrimaryHit n = b_primary[domain_of(uvec2(q), 0u)];
+    if ((n.flags & PRIMARY_HIT) == 0u || n.instance != front.instance ||
+        abs(n.t - front.t) > SILHOUETTE_DEPTH_RATIO * min(n.t, front.t))
+      return true;
+  }
+  return false;
 }
 
 GpuPrimaryHit entry_of(RayHit h, float t, SurfaceHit s) {
@@ -174,6 +190,7 @@ void main() {
       if (i == 0u || uniform_mode) {
         r.flags |= DOMAIN_ACTIVE | DOMAIN_PROPAGATES;  // front layer: always; uniform: every layer
         if (i == 0u && front_disoccluded) r.flags |= DOMAIN_DISOCCLUDED;
+        if (i == 0u && u_restir.silhouette_band > 0u && silhouette(pixel, front)) r.flags |= DOMAIN_SILHOUETTE;
       } else {
         GpuDomainMark m = b_marks[d];
         if (m.occluder_min != OCCLUDER_NONE) {

@@ -4,6 +4,12 @@
 //     propagating domain of its layer lies within hole_fill_radius pixels (ML: "we treat neighboring
 //     domains within a fixed radius of the current active domains as active"; they sample but do not
 //     propagate: DOMAIN_FILLED, without DOMAIN_PROPAGATES).
+//   - The silhouette band (silhouette_band > 0; not in the ML paper): an active deep domain farther
+//     than silhouette_band pixels from every silhouette of the front layer (DOMAIN_SILHOUETTE,
+//     domain_build) cannot be uncovered in the next frames unless an edge moves that far: it is
+//     dormant instead, its representative hit still propagates (DOMAIN_PROPAGATES, the list's other
+//     end for domain_propagate) but it samples nothing, so it costs no path, splat or resampling.
+//     A hole-filled one there is simply inactive. The test reads geometry only, as activation does.
 //   - Every active deep domain is appended to the dense list that the initial and resampling passes
 //     dispatch indirectly, one thread per domain (ML Sec. 5's compaction); the list dispatch's
 //     workgroup count grows with it.
@@ -27,7 +33,7 @@ layout(set = 0, binding = BINDING_COUNTERS, std430) buffer Counters { uint b_cou
 layout(set = 0, binding = BINDING_RESERVOIRS_OUT, std430) buffer ReservoirsOut { PackedReservoir b_out[]; };
 layout(set = 0, binding = BINDING_DOMAINS, std430) buffer Domains { GpuDomainRange b_domains[]; };
 layout(set = 0, binding = BINDING_DOMAIN_LIST, std430) writeonly buffer DomainList { uint b_domain_list[]; };
-layout(set = 0, binding = BINDING_DOMAIN_ARGS, std430) buffer DomainArgs { GpuDomainArgs b_domain_args; };
+layout(set = 0, binding = BINDING_DOMAIN_ARGS, std430) buffer DomainArgs { GpuDomainArgs b_domain_args[2]; };
 
 uint domain_at(uvec2 pixel, uint layer) { return domain_index(pixel, layer, u_frame.width, u_frame.height); }
 
@@ -39,6 +45,18 @@ bool propagating_near(uvec2 pixel, uint layer) {
       if ((dx == 0 && dy == 0) || dx * dx + dy * dy > r * r || q.x < 0 || q.y < 0 || q.x >= int(u_frame.width) || q.y >= int(u_frame.height))
         continue;
       if ((b_domains[domain_at(uvec2(q), layer)].flags & DOMAIN_PROPAGATES) != 0u) return true;
+    }
+  return false;
+}
+
+// Whether a front-layer silhouette lies within silhouette_band pixels.
+bool near_silhouette(uvec2 pixel) {
+  int r = int(u_restir.silhouette_band);
+  for (int dy = -r; dy <= r; ++dy)
+    for (int dx = -r; dx <= r; ++dx) {
+      ivec2 q = ivec2(pixel) + ivec2(dx, dy);
+      if (dx * dx + dy * dy > r * r || q.x < 0 || q.y < 0 || q.x >= int(u_frame.width) || q.y >= int(u_frame.height)) continue;
+      if ((b_domains[domain_at(uvec2(q), 0u)].flags & DOMAIN_SILHOUETTE) != 0u) return true;
     }
   return false;
 }
@@ -60,6 +78,7 @@ void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
   if ((b_domains[domain_at(pixel, 0u)].flags & DOMAIN_ACTIVE) != 0u) atomicAdd(b_counters[COUNTER_DOMAINS_ACTIVE], 1u);
+  int near = -1;  // near_silhouette(pixel), once asked
   for (uint i = 1u; i < u_restir.layers; ++i) {
     uint d = domain_at(pixel, i);
     uint flags = b_domains[d].flags;
@@ -67,14 +86,28 @@ void main() {
       flags |= DOMAIN_ACTIVE | DOMAIN_FILLED;
       b_domains[d].flags = flags;
     }
+    if ((flags & DOMAIN_ACTIVE) != 0u && u_restir.silhouette_band > 0u) {
+      if (near < 0) near = near_silhouette(pixel) ? 1 : 0;
+      if (near == 0) {
+        flags &= ~(DOMAIN_ACTIVE | DOMAIN_FILLED);
+        if ((flags & DOMAIN_PROPAGATES) != 0u) {
+          flags |= DOMAIN_DORMANT;
+          atomicAdd(b_counters[COUNTER_DOMAINS_DORMANT], 1u);
+          uint j = atomicAdd(b_domain_args[DOMAIN_ARGS_DORMANT].count, 1u);
+          b_domain_list[(u_restir.layers - 1u) * u_frame.width * u_frame.height - 1u - j] = d;
+          atomicMax(b_domain_args[DOMAIN_ARGS_DORMANT].groups_x, j / DOMAIN_LIST_GROUP + 1u);
+        }
+        b_domains[d].flags = flags;
+      }
+    }
     if ((flags & DOMAIN_ACTIVE) == 0u) {
       b_out[d] = empty_reservoir();
       continue;
     }
     atomicAdd(b_counters[COUNTER_DOMAINS_ACTIVE + i], 1u);
     atomicAdd(b_counters[(flags & DOMAIN_FILLED) != 0u ? COUNTER_DOMAINS_FILLED : COUNTER_DOMAINS_PROPAGATED], 1u);
-    uint slot = atomicAdd(b_domain_args.count, 1u);
+    uint slot = atomicAdd(b_domain_args[DOMAIN_ARGS_ACTIVE].count, 1u);
     b_domain_list[slot] = d;
-    atomicMax(b_domain_args.groups_x, slot / DOMAIN_LIST_GROUP + 1u);
+    atomicMax(b_domain_args[DOMAIN_ARGS_ACTIVE].groups_x, slot / DOMAIN_LIST_GROUP + 1u);
   }
 }

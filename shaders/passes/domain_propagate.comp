@@ -10,7 +10,8 @@
 // the front layer needs no mark (front domains are always active); one that falls outside the
 // image, behind the camera, on a back face, or deeper than the k layers is dropped. One thread per
 // previous domain: the image dispatch the front layer's, the list dispatch (SPEC_DOMAIN_LIST) the
-// previous frame's active deep domains (restir/domain_list_prev.glsl).
+// previous frame's active deep domains and, with SPEC_DORMANT_LIST, its dormant ones (the silhouette
+// band, domain_fill.comp; restir/domain_list_prev.glsl).
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
 

@@ -25,6 +25,12 @@ CONST_DEF uint DOMAIN_PROPAGATES = 4u; // activated by propagation (or the front
 CONST_DEF uint DOMAIN_FILLED = 8u;     // active by hole filling only (ML 4.3: sampling only)
 CONST_DEF uint DOMAIN_DISOCCLUDED = 16u;  // front layer: its representative hit was hidden from the previous camera
 CONST_DEF uint DOMAIN_COVERED = 32u;      // front layer, disoccluded: a splat from a previous deep domain landed (ML Table 1)
+CONST_DEF uint DOMAIN_SILHOUETTE = 64u;   // front layer: a 4-neighbour's centre ray sees another surface (another instance,
+                                          // nothing, or a depth more than SILHOUETTE_DEPTH_RATIO apart): an edge that
+                                          // can uncover what lies behind the pixels near it
+CONST_DEF uint DOMAIN_DORMANT = 128u;     // deep, activated by propagation but farther than silhouette_band from every
+                                          // silhouette: its representative hit propagates, it samples nothing (not active)
+CONST_DEF float SILHOUETTE_DEPTH_RATIO = 0.05f;
 
 CONST_DEF uint OCCLUDER_NONE = 0xFFFFFFFFu;  // a mark no propagated hit set (GpuDomainMark)
 
@@ -57,6 +63,11 @@ struct GpuDomainArgs {
   uint groups_z;
   uint count;
 };
+
+// The arguments buffer holds two: DOMAIN_ARGS_ACTIVE for the list of active deep domains (from the
+// list's start), DOMAIN_ARGS_DORMANT for the dormant ones (from the list's end backwards).
+CONST_DEF uint DOMAIN_ARGS_ACTIVE = 0u;
+CONST_DEF uint DOMAIN_ARGS_DORMANT = 1u;
 
 CONST_DEF uint DOMAIN_LIST_GROUP = 64u;  // threads per workgroup of a list dispatch (local_size_x)
 

@@ -22,6 +22,9 @@ CONST_DEF uint RESTIR_SPATIAL_TRIES = 4u;
 CONST_DEF uint RESTIR_TEMPORAL_TRIES = 9u;
 // restir-multilayer: the hole filling radius (ML 4.3 uses 3; domain_fill.comp reads (2r+1)^2 marks).
 CONST_DEF uint RESTIR_MAX_HOLE_FILL_RADIUS = 8u;
+// restir-multilayer: the silhouette band (domain_fill.comp reads up to (2r+1)^2 front-layer flags
+// per pixel with an active deep domain).
+CONST_DEF uint RESTIR_MAX_SILHOUETTE_BAND = 32u;
 
 STRATA_NAMESPACE_END
 #endif

@@ -95,6 +95,7 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
   domains = pixels * layers;
   constants = gpu::Buffer(ctx, sizeof(gpu::GpuRestirConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "restir constants");
   gpu::GpuRestirConstants c = make_constants(settings, spec, layers, splat_sort());
+  c.silhouette_band = silhouette_band();
   constants.upload(&c, sizeof c);
   work = device_storage(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (work)");
   history = PingPong(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (history)");
@@ -114,7 +115,8 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
   // The list holds deep domains only: (k - 1) x pixels at most.
   const size_t list_entries = multilayer() ? size_t(domains - pixels) : 1;
   domain_list = PingPong(ctx, sizeof(uint32_t) * list_entries, "domain list");
-  domain_args = PingPong(ctx, sizeof(gpu::GpuDomainArgs), "domain list arguments", gpu::k_indirect_usage);
+  // DOMAIN_ARGS_ACTIVE, then DOMAIN_ARGS_DORMANT (restir/layer_data.h).
+  domain_args = PingPong(ctx, 2 * sizeof(gpu::GpuDomainArgs), "domain list arguments", gpu::k_indirect_usage);
 }
 
 std::map<std::string, uint64_t> RestirState::memory_bytes() const {

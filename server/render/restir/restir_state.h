@@ -53,6 +53,8 @@ struct RestirState {
   bool splat_sort() const { return spec.temporal == StageKind::temporal_splat && settings.restir.temporal; }
   // layer_mode uniform / no-depth-ranges: deep domains by rank, a splat's layer by walking its camera ray.
   bool layer_stepping() const { return multilayer() && settings.restir.layer_mode != "active"; }
+  // The silhouette band (domain_fill.comp) in pixels: layer_mode active only (0: off).
+  uint32_t silhouette_band() const { return multilayer() && !layer_stepping() ? settings.restir.silhouette_band : 0; }
 
   std::map<std::string, uint64_t> memory_bytes() const;
 };

@@ -5,8 +5,9 @@
 //                     frame, its new layer counted along the camera ray, a mark with its occluder
 //   domain_build      per pixel: the representative hits of the deep layers it needs (the centre
 //                     ray walked on), the occluder check, the depth ranges of all its layers
-//   domain_fill       per pixel: hole filling, the compacted list of active deep domains (and the
-//                     indirect dispatch's workgroups), inactive deep reservoirs emptied
+//   domain_fill       per pixel: hole filling, the silhouette band (dormant deep domains), the
+//                     compacted lists of active and dormant deep domains (and the indirect
+//                     dispatches' workgroups), inactive deep reservoirs emptied
 // Reads the previous frame's domain state (domain_ranges, visibility, domain_list and domain_args:
 // previous) and writes this frame's (their current halves; visibility: the deep entries).
 #include "include/bindings.h"
@@ -27,7 +28,7 @@ class DomainInitStage : public Stage {
       return std::vector<PassResource>{uniform(BINDING_FRAME, state.shared.constants), uniform(BINDING_RESTIR, state.constants),
                                        storage(BINDING_COUNTERS, Access::read_write, state.shared.counters)};
     };
-    auto propagate = [&](bool list) {
+    auto propagate = [&](bool list, bool dormant) {
       auto r = common();
       r.push_back(history_previous(BINDING_PRIMARY_PREV, state.visibility));
       r.push_back(history_current(BINDING_PRIMARY, Access::read, state.visibility));  // this frame's centre hits
@@ -36,10 +37,12 @@ class DomainInitStage : public Stage {
       r.push_back(history_previous(BINDING_DOMAIN_LIST_PREV, state.domain_list));
       r.push_back(history_previous(BINDING_DOMAIN_ARGS_PREV, state.domain_args));
       return std::make_unique<Pass>(ctx, scene, SceneUse{.lights = false, .history = true}, "domain_propagate", std::move(r),
-                                    std::vector<gpu::SpecConstant>{{SPEC_DOMAIN_LIST, list ? VK_TRUE : VK_FALSE}});
+                                    std::vector<gpu::SpecConstant>{{SPEC_DOMAIN_LIST, list ? VK_TRUE : VK_FALSE},
+                                                                   {SPEC_DORMANT_LIST, dormant ? VK_TRUE : VK_FALSE}});
     };
-    propagate_front_ = propagate(false);
-    propagate_deep_ = propagate(true);
+    propagate_front_ = propagate(false, false);
+    propagate_deep_ = propagate(true, false);
+    if (state.silhouette_band() > 0) propagate_dormant_ = propagate(true, true);
     auto build = common();
     build.push_back(history_current(BINDING_PRIMARY, Access::read_write, state.visibility));
     build.push_back(history_current(BINDING_DOMAINS, Access::write, state.domain_ranges));
@@ -63,12 +66,15 @@ class DomainInitStage : public Stage {
     propagated_ = f.frame.history_valid && state_.settings.restir.layer_mode != "uniform";
     timed(f, "domain_init", [&] {
       vkCmdFillBuffer(f.cmd, state_.domain_marks.handle(), 0, VK_WHOLE_SIZE, gpu::OCCLUDER_NONE);  // no marks
-      const gpu::GpuDomainArgs empty{0, 1, 1, 0};  // no workgroups yet; y = z = 1; length 0
-      vkCmdUpdateBuffer(f.cmd, state_.domain_args.current(f.parity).handle(), 0, sizeof empty, &empty);
+      const gpu::GpuDomainArgs empty[2] = {{0, 1, 1, 0}, {0, 1, 1, 0}};  // no workgroups yet; y = z = 1; length 0
+      vkCmdUpdateBuffer(f.cmd, state_.domain_args.current(f.parity).handle(), 0, sizeof empty, empty);
       gpu::compute_barrier(f.cmd);
       if (propagated_) {
         propagate_front_->dispatch_2d(f.cmd, f.parity, state_.width, state_.height);
         propagate_deep_->dispatch_indirect(f.cmd, f.parity, state_.domain_args.previous(f.parity));
+        if (propagate_dormant_)
+          propagate_dormant_->dispatch_indirect(f.cmd, f.parity, state_.domain_args.previous(f.parity),
+                                                gpu::DOMAIN_ARGS_DORMANT * sizeof(gpu::GpuDomainArgs));
         gpu::compute_barrier(f.cmd);
       }
       build_->dispatch_2d(f.cmd, f.parity, state_.width, state_.height);
@@ -86,7 +92,10 @@ class DomainInitStage : public Stage {
     return {"domain_init", true,
             std::to_string(state_.layers) + " layers (" + state_.layers_reason + "); " + mode +
                 (o.layer_mode == "uniform" ? std::string()
-                                           : "; hole filling radius " + std::to_string(o.hole_fill_radius) + " px") +
+                                           : "; hole filling radius " + std::to_string(o.hole_fill_radius) + " px" +
+                                                 (state_.silhouette_band() > 0
+                                                      ? "; deep domains beyond " + std::to_string(o.silhouette_band) + " px of a silhouette dormant"
+                                                      : "")) +
                 (propagated_ || o.layer_mode == "uniform" ? "" : "; no previous frame: front layer only")};
   }
 
@@ -102,6 +111,8 @@ class DomainInitStage : public Stage {
     s.reuse["domains.deep"] = deep;
     s.reuse["domains.propagated"] = c[COUNTER_DOMAINS_PROPAGATED];
     s.reuse["domains.filled"] = c[COUNTER_DOMAINS_FILLED];
+    // ... and propagated ones the silhouette band left dormant (tracked, not sampled, not in deep)
+    if (state_.silhouette_band() > 0) s.reuse["domains.dormant"] = c[COUNTER_DOMAINS_DORMANT];
     s.reuse["domains.occluder_refused"] = c[COUNTER_DOMAINS_OCCLUDER];
     s.reuse["domains.uniform_deep"] = c[COUNTER_DOMAINS_UNIFORM];
     s.reuse["domains.disoccluded"] = c[COUNTER_DISOCCLUDED];  // front-layer hits hidden from the previous camera
@@ -113,7 +124,7 @@ class DomainInitStage : public Stage {
 
  private:
   const RestirState& state_;
-  std::unique_ptr<Pass> propagate_front_, propagate_deep_, build_, fill_;
+  std::unique_ptr<Pass> propagate_front_, propagate_deep_, propagate_dormant_, build_, fill_;
   bool propagated_ = false;
 };
 
