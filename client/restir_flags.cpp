@@ -32,7 +32,7 @@ void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
   cmd->add_option("--hole-fill-radius", r.hole_fill_radius, "restir-multilayer: hole filling radius in pixels (0..8; 0: off; default 3)");
   cmd->add_option("--silhouette-band", r.silhouette_band,
                   "restir-multilayer: deep domains farther than this many pixels from a front-layer silhouette are dormant, "
-                  "tracked but not sampled (0..32; 0: off; default 0)");
+                  "tracked but not sampled (0..32; 0: off; default 1)");
   cmd->add_option("--layer-mode", r.layer_mode,
                   "restir-multilayer: active | uniform | no-depth-ranges (the ML paper's validation variants; default active)")
       ->check(CLI::IsMember({"active", "uniform", "no-depth-ranges"}));
