@@ -278,6 +278,10 @@ TEST_F(RestirTest, BadRestirOptionsAreInvalidArgumentNamingTheField) {
       "options.light_candidates = 0 is outside [1, 32]");
   add("disocclusion_spatial_neighbors 9", "restir-gather", [](auto& o) { o.set_disocclusion_spatial_neighbors(9); },
       "options.disocclusion_spatial_neighbors = 9 is outside [0, 8] (0 = spatial_neighbors)");
+  add("hole_fill_radius 9", "restir-multilayer", [](auto& o) { o.set_hole_fill_radius(9); },
+      "options.hole_fill_radius = 9 is outside [0, 8] (0 = off)");
+  add("silhouette_band 33", "restir-multilayer", [](auto& o) { o.set_silhouette_band(33); },
+      "options.silhouette_band = 33 is outside [0, 32] (0 = off)");
   add("direct_strata 0", "restir-gather", [](auto& o) { o.set_direct_strata(0); },
       "options.direct_strata = 0 is outside [1, 8]");
   add("direct_strata 9", "restir-splat", [](auto& o) { o.set_direct_strata(9); },
