@@ -37,26 +37,16 @@ layout(set = 0, binding = BINDING_DOMAIN_ARGS, std430) buffer DomainArgs { GpuDo
 
 uint domain_at(uvec2 pixel, uint layer) { return domain_index(pixel, layer, u_frame.width, u_frame.height); }
 
-bool propagating_near(uvec2 pixel, uint layer) {
-  int r = int(u_restir.hole_fill_radius);
-  for (int dy = -r; dy <= r; ++dy)
-    for (int dx = -r; dx <= r; ++dx) {
-      ivec2 q = ivec2(pixel) + ivec2(dx, dy);
-      if ((dx == 0 && dy == 0) || dx * dx + dy * dy > r * r || q.x < 0 || q.y < 0 || q.x >= int(u_frame.width) || q.y >= int(u_frame.height))
-        continue;
-      if ((b_domains[domain_at(uvec2(q), layer)].flags & DOMAIN_PROPAGATES) != 0u) return true;
-    }
-  return false;
-}
-
-// Whether a front-layer silhouette lies within silhouette_band pixels.
-bool near_silhouette(uvec2 pixel) {
-  int r = int(u_restir.silhouette_band);
+// Whether a domain of `layer` within `radius` pixels of `pixel` (the pixel itself included) has
+// `flag`. Hole filling asks for DOMAIN_PROPAGATES in the pixel's own layer (the pixel's own domain,
+// when it propagates, is active already), the silhouette band for DOMAIN_SILHOUETTE in the front layer.
+bool flag_within(uvec2 pixel, uint layer, uint radius, uint flag) {
+  int r = int(radius);
   for (int dy = -r; dy <= r; ++dy)
     for (int dx = -r; dx <= r; ++dx) {
       ivec2 q = ivec2(pixel) + ivec2(dx, dy);
       if (dx * dx + dy * dy > r * r || q.x < 0 || q.y < 0 || q.x >= int(u_frame.width) || q.y >= int(u_frame.height)) continue;
-      if ((b_domains[domain_at(uvec2(q), 0u)].flags & DOMAIN_SILHOUETTE) != 0u) return true;
+      if ((b_domains[domain_at(uvec2(q), layer)].flags & flag) != 0u) return true;
     }
   return false;
 }
@@ -78,23 +68,24 @@ void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
   if ((b_domains[domain_at(pixel, 0u)].flags & DOMAIN_ACTIVE) != 0u) atomicAdd(b_counters[COUNTER_DOMAINS_ACTIVE], 1u);
-  int near = -1;  // near_silhouette(pixel), once asked
+  int near = -1;  // a silhouette within the band, once asked
   for (uint i = 1u; i < u_restir.layers; ++i) {
     uint d = domain_at(pixel, i);
     uint flags = b_domains[d].flags;
-    if ((flags & DOMAIN_HIT) != 0u && (flags & DOMAIN_ACTIVE) == 0u && u_restir.hole_fill_radius > 0u && propagating_near(pixel, i)) {
+    if ((flags & DOMAIN_HIT) != 0u && (flags & DOMAIN_ACTIVE) == 0u && u_restir.hole_fill_radius > 0u &&
+        flag_within(pixel, i, u_restir.hole_fill_radius, DOMAIN_PROPAGATES)) {
       flags |= DOMAIN_ACTIVE | DOMAIN_FILLED;
       b_domains[d].flags = flags;
     }
     if ((flags & DOMAIN_ACTIVE) != 0u && u_restir.silhouette_band > 0u) {
-      if (near < 0) near = near_silhouette(pixel) ? 1 : 0;
+      if (near < 0) near = flag_within(pixel, 0u, u_restir.silhouette_band, DOMAIN_SILHOUETTE) ? 1 : 0;
       if (near == 0) {
         flags &= ~(DOMAIN_ACTIVE | DOMAIN_FILLED);
         if ((flags & DOMAIN_PROPAGATES) != 0u) {
           flags |= DOMAIN_DORMANT;
           atomicAdd(b_counters[COUNTER_DOMAINS_DORMANT], 1u);
           uint j = atomicAdd(b_domain_args[DOMAIN_ARGS_DORMANT].count, 1u);
-          b_domain_list[(u_restir.layers - 1u) * u_frame.width * u_frame.height - 1u - j] = d;
+          b_domain_list[dormant_list_slot(j, u_restir.layers, u_frame.width, u_frame.height)] = d;
           atomicMax(b_domain_args[DOMAIN_ARGS_DORMANT].groups_x, j / DOMAIN_LIST_GROUP + 1u);
         }
         b_domains[d].flags = flags;

@@ -19,9 +19,7 @@ bool prev_list_entry(out uint domain) {
   uint count = b_domain_args_prev[k_dormant_list ? DOMAIN_ARGS_DORMANT : DOMAIN_ARGS_ACTIVE].count;
   domain = 0u;
   if (i >= count) return false;
-  // The dormant entries fill the list from its last slot backwards: (k - 1) x pixels slots.
-  uint slots = (u_restir.layers - 1u) * u_frame.prev_width * u_frame.prev_height;
-  domain = b_domain_list_prev[k_dormant_list ? slots - 1u - i : i];
+  domain = b_domain_list_prev[k_dormant_list ? dormant_list_slot(i, u_restir.layers, u_frame.prev_width, u_frame.prev_height) : i];
   return true;
 }
 
