@@ -81,8 +81,11 @@ struct RestirOptions {
   // estimate (ML Eq. 3: the radiance its deep surface sends to the camera as if nothing hid it;
   // 0 where that domain is inactive). For tests and for looking at a layer.
   uint32_t view_layer = 0;
-  // Splat methods: initial candidates of the pixels no temporal splat reached (0: initial_candidates);
-  // the ML paper's "more initial spp" disocclusion baseline (Fig. 9).
+  // Splat methods: initial candidates of the pixels no temporal splat reached, the ML paper's "more
+  // initial spp" disocclusion baseline (Fig. 9); restir-multilayer: of those its domain_build found
+  // disoccluded (the landing holes of surfaces that were in view take initial_candidates). 0: the
+  // method's (MethodSpec::disocclusion_initial_candidates: restir-multilayer 4, the others
+  // initial_candidates); a value equal to initial_candidates turns the boost off.
   uint32_t disocclusion_initial_candidates = 0;
   // LoD-aware reuse (the LOD paper; docs/ARCHITECTURE.md, "Surface resolver"): lod_mapping auto (uv
   // where the scene has LoD groups) | off (a LoD switch refuses the shifts of its points) | uv (the
@@ -91,6 +94,14 @@ struct RestirOptions {
   std::string lod_mapping = "auto";
   bool lod_matching = true;
   std::string lod_vertices = "both";
+  // The boost's candidate count in effect for `method` with k pixel layers; 0 where there is none
+  // (the method's default needs a deep layer: with one, restir-multilayer is restir-splat's pipeline).
+  uint32_t disocclusion_candidates(const MethodSpec& method, uint32_t k) const {
+    const uint32_t n = disocclusion_initial_candidates > 0 ? disocclusion_initial_candidates
+                       : k > 1                             ? method.disocclusion_initial_candidates
+                                                           : 0u;
+    return n == initial_candidates ? 0u : n;
+  }
   float moving_cap(const MethodSpec& method) const { return confidence_cap > 0.0f ? confidence_cap : method.confidence_cap; }
   float still_cap(const MethodSpec& method) const {
     return still_confidence_cap > 0.0f ? still_confidence_cap : moving_cap(method);

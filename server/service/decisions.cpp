@@ -132,8 +132,11 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                            : "neighbours for pixels whose reservoir holds no history (disoccluded, or the first frame), "
                              "instead of spatial_neighbors"));
   }
+  const render::RestirOptions options = restir_options(eff);
   {
-    const uint32_t n = eff.disocclusion_initial_candidates();
+    // k layers: requested, measured, or (auto, before the first frame) assumed deep.
+    const uint32_t k = !method.layers ? 1u : eff.layers() != 0 ? eff.layers() : measured_layers ? measured_layers->layers : 2u;
+    const uint32_t n = options.disocclusion_candidates(method, k);  // 0: no boost
     const bool splat_sort = temporal && method.splatting;
     out.push_back(make("disocclusion_initial_candidates",
                        asked(req.has_disocclusion_initial_candidates(), u(req.disocclusion_initial_candidates())), u(n),
@@ -142,9 +145,10 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                        : !method.splatting  ? "splat methods only: the gather methods do not know before the initial pass which pixels get no history"
                        : !temporal          ? no_temporal
                        : n == 0             ? "pixels no splat reached take initial_candidates like every other pixel"
+                       : method.layers      ? "candidate paths of the disoccluded pixels no splat reached: surfaces no deep domain held "
+                                              "(restir-multilayer's default 4; landing holes of surfaces in view take initial_candidates)"
                                             : "candidate paths of the pixels no splat reached (the splat sort runs before the initial pass; ML Fig. 9 \"more initial spp\")"));
   }
-  const render::RestirOptions options = restir_options(eff);
   const bool visibility_buffer = options.visibility_buffer(method.fixed_primary);
   out.push_back(make("direct_strata", asked(req.has_direct_strata(), u(req.direct_strata())), u(eff.direct_strata()),
                      method.reuse && options.direct_strata_used(method) > 1,

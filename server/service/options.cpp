@@ -69,7 +69,7 @@ void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, cons
   check_range(o.has_disocclusion_spatial_neighbors(), o.disocclusion_spatial_neighbors(), 0, RESTIR_MAX_SPATIAL_NEIGHBORS,
               p + "disocclusion_spatial_neighbors", "0 = spatial_neighbors");
   check_range(o.has_disocclusion_initial_candidates(), o.disocclusion_initial_candidates(), 0, RESTIR_MAX_INITIAL_CANDIDATES,
-              p + "disocclusion_initial_candidates", "0 = initial_candidates");
+              p + "disocclusion_initial_candidates", "0 = the method's");
   check_range(o.has_direct_strata(), o.direct_strata(), 1, RESTIR_MAX_DIRECT_STRATA, p + "direct_strata");
   check_range(o.has_albedo_strata(), o.albedo_strata(), 1, RESTIR_MAX_DIRECT_STRATA, p + "albedo_strata", "1 = off");
   check_float(o.has_exposure(), o.exposure(), -64.0f, 64.0f, p + "exposure");
@@ -153,7 +153,8 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const render
   o.set_spatial_reuse(restir.spatial);
   o.set_unbiased(restir.unbiased);
   o.set_disocclusion_spatial_neighbors(restir.disocclusion_spatial_neighbors);
-  o.set_disocclusion_initial_candidates(restir.disocclusion_initial_candidates);
+  o.set_disocclusion_initial_candidates(restir.disocclusion_initial_candidates > 0 ? restir.disocclusion_initial_candidates
+                                                                                  : method.disocclusion_initial_candidates);
   o.set_direct_strata(restir.direct_strata);
   o.set_albedo_strata(restir.albedo_strata);
   o.set_temporal_filter(restir.temporal_filter);

@@ -47,11 +47,15 @@ layout(constant_id = SPEC_DOMAIN_LIST) const bool k_domain_list = false;
 
 // The candidates of a front-layer pixel: disocclusion_initial_candidates where this frame's splat
 // counting sort (run before this pass) landed no splat, the ML paper's "more initial spp" baseline
-// (Fig. 9); else initial_candidates. Unbiased either way: the count is fixed before any candidate.
+// (Fig. 9); else initial_candidates. restir-multilayer boosts only the disoccluded ones
+// (DOMAIN_DISOCCLUDED, domain_build.comp): surfaces no active domain held, which no history can
+// reach, not the landing holes of surfaces that were in view. Unbiased either way: the count is
+// fixed (by geometry and the splats' landing) before any candidate.
 uint initial_candidates_of(uint domain) {
   uint boost = u_restir.disocclusion_initial_candidates;
   if (boost == 0u || (u_frame.history_flags & HISTORY_VALID) == 0u) return u_restir.initial_candidates;
   if (b_splat_offsets[domain + 1u] != b_splat_offsets[domain]) return u_restir.initial_candidates;
+  if (multilayer() && (b_domains[domain].flags & DOMAIN_DISOCCLUDED) == 0u) return u_restir.initial_candidates;
   atomicAdd(b_counters[COUNTER_DISOCCLUSION_BOOSTED], 1u);
   return boost;
 }

@@ -45,7 +45,7 @@ struct GpuRestirConstants {
   uint layer_mode;           // restir-multilayer: LAYER_MODE_* (the method and its ML validation variants)
   float depth_range_epsilon; // restir-multilayer: a representative hit at t has the depth range [(1-e)t, (1+e)t] (ML Sec. 5)
   uint view_layer;          // restir-multilayer: 0 shades the image; i >= 1 the estimates of layer i's active domains (tests, debugging)
-  uint disocclusion_initial_candidates;  // splat methods: candidates of front-layer pixels no splat reached (0: initial_candidates; ML Fig. 9 "more initial spp")
+  uint disocclusion_initial_candidates;  // splat methods: candidates of front-layer pixels no splat reached (restir-multilayer: disoccluded ones); 0: none (RestirOptions::disocclusion_candidates)
   uint silhouette_band;     // restir-multilayer: deep domains farther than this many pixels from a front-layer silhouette are dormant (0: off)
   uint pad3;
   uint pad4;

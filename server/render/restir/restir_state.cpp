@@ -48,7 +48,7 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
   c.depth_range_epsilon = k_depth_range_epsilon;
   c.view_layer = o.view_layer;
   // Only where the splat counting sort runs before the initial stage (it says where no splat landed).
-  c.disocclusion_initial_candidates = splat_sort ? o.disocclusion_initial_candidates : 0u;
+  c.disocclusion_initial_candidates = splat_sort ? o.disocclusion_candidates(spec, layers) : 0u;
   return c;
 }
 

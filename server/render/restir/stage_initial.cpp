@@ -35,7 +35,8 @@ class InitialStage : public Stage {
     std::string start = state_.spec.fixed_primary ? ", from the pixel's primary hit of the frame" : ", each with its own camera ray";
     return {"initial", true,
             std::to_string(o.initial_candidates) + " candidate path(s)" +
-                (boost() ? " (" + std::to_string(o.disocclusion_initial_candidates) + " where no splat landed)" : std::string()) + ", " + std::to_string(o.light_candidates) +
+                (boost() ? " (" + std::to_string(candidates()) + (deep_ ? " where a disoccluded pixel got no splat)" : " where no splat landed)")
+                         : std::string()) + ", " + std::to_string(o.light_candidates) +
                 " light candidate(s) per vertex, " + paths + start +
                 (deep_ ? "; and one canonical sample per active deep domain (ML Eq. 3-4: the first hit within its depth range, hidden from the camera)"
                        : "")};
@@ -50,7 +51,8 @@ class InitialStage : public Stage {
                              history_current(BINDING_DOMAIN_ARGS, Access::read, state_.domain_args),
                              storage(BINDING_SPLAT_OFFSETS, Access::read, state_.splat_offsets)});
   }
-  bool boost() const { return state_.splat_sort() && state_.settings.restir.disocclusion_initial_candidates > 0; }
+  bool boost() const { return state_.splat_sort() && candidates() > 0; }
+  uint32_t candidates() const { return state_.settings.restir.disocclusion_candidates(state_.spec, state_.layers); }
   std::vector<gpu::SpecConstant> spec(bool deep) const {
     return {{SPEC_DOMAIN_LIST, deep ? VK_TRUE : VK_FALSE}, {SPEC_LAYER_STEPPING, state_.layer_stepping() ? VK_TRUE : VK_FALSE}};
   }
