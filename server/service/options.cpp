@@ -153,8 +153,7 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const render
   o.set_spatial_reuse(restir.spatial);
   o.set_unbiased(restir.unbiased);
   o.set_disocclusion_spatial_neighbors(restir.disocclusion_spatial_neighbors);
-  o.set_disocclusion_initial_candidates(restir.disocclusion_initial_candidates > 0 ? restir.disocclusion_initial_candidates
-                                                                                  : method.disocclusion_initial_candidates);
+  o.set_disocclusion_initial_candidates(restir.disocclusion_initial_candidates);  // 0: the method's (it needs k, not known here)
   o.set_direct_strata(restir.direct_strata);
   o.set_albedo_strata(restir.albedo_strata);
   o.set_temporal_filter(restir.temporal_filter);

@@ -48,9 +48,10 @@ layout(constant_id = SPEC_DOMAIN_LIST) const bool k_domain_list = false;
 // The candidates of a front-layer pixel: disocclusion_initial_candidates where this frame's splat
 // counting sort (run before this pass) landed no splat, the ML paper's "more initial spp" baseline
 // (Fig. 9); else initial_candidates. restir-multilayer boosts only the disoccluded ones
-// (DOMAIN_DISOCCLUDED, domain_build.comp): surfaces no active domain held, which no history can
-// reach, not the landing holes of surfaces that were in view. Unbiased either way: the count is
-// fixed (by geometry and the splats' landing) before any candidate.
+// (DOMAIN_DISOCCLUDED, domain_build.comp): a disoccluded pixel no splat reached shows a surface no
+// deep domain carried, with no history to reuse; a landing hole on a surface that stayed in view
+// is not boosted. Unbiased either way: geometry and the splats' landing fix the count before any
+// candidate.
 uint initial_candidates_of(uint domain) {
   uint boost = u_restir.disocclusion_initial_candidates;
   if (boost == 0u || (u_frame.history_flags & HISTORY_VALID) == 0u) return u_restir.initial_candidates;
