@@ -69,11 +69,11 @@ struct GpuDomainArgs {
 CONST_DEF uint DOMAIN_ARGS_ACTIVE = 0u;
 CONST_DEF uint DOMAIN_ARGS_DORMANT = 1u;
 
-CONST_DEF uint DOMAIN_LIST_GROUP = 64u;
+CONST_DEF uint DOMAIN_LIST_GROUP = 64u;  // threads per workgroup of a list dispatch (local_size_x)
 
 // Where the j-th dormant deep domain of a frame's list lies: the list holds (k - 1) x pixels slots,
 // the active domains from the first, the dormant ones from the last backwards.
-INLINE uint dormant_list_slot(uint j, uint layers, uint width, uint height) { return (layers - 1u) * width * height - 1u - j; }  // threads per workgroup of a list dispatch (local_size_x)
+INLINE uint dormant_list_slot(uint j, uint layers, uint width, uint height) { return (layers - 1u) * width * height - 1u - j; }
 
 STRATA_NAMESPACE_END
 
