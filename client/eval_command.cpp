@@ -153,27 +153,28 @@ class Evaluation {
   }
 
  private:
-  // --timing-rounds R: R - 1 more runs of each of `runs`, taken in turn so that a slow stretch of the
-  // machine falls on all of them; each run keeps the median frame time of every round (round_ms),
-  // and its time is their median. The errors are deterministic for the seed, so the later rounds'
-  // frames are timed, not scored.
+  // --timing-rounds R: R - 1 more rounds of `runs`, each round playing every run's frames
+  // interleaved (frame f of each run in turn, EvalClient::run_interleaved), so that a slow stretch
+  // of the machine, which on lavapipe moves frame times by up to 30% over a minute, falls on all of
+  // them alike. Each run keeps the median frame time of every round (round_ms, the scored run's
+  // first) and its time is their median. The errors are deterministic for the seed, so the later
+  // rounds' frames are timed, not scored.
   void time_rounds(const std::string& scene, const std::vector<report::Run*>& runs) {
     if (a_.timing_rounds <= 1) return;
     for (report::Run* r : runs) r->round_ms = {median_gpu_ms(*r)};
-    for (uint32_t round = 1; round < a_.timing_rounds; ++round)
-      for (report::Run* r : runs) r->round_ms.push_back(timed_run_ms(scene, r->method, r->spp));
-  }
-
-  // The median GPU ms of one more run of `method`, its frames unscored.
-  double timed_run_ms(const std::string& scene, const std::string& method, uint32_t spp) {
-    std::vector<double> ms;
-    auto t = Clock::now();
-    client_.run_method(scene, method, spp, a_, [&](MethodImage&& m) {
-      if (m.frame >= a_.score_from) ms.push_back(m.gpu_ms);
-      step(m.frame, ms_since(t), m.gpu_ms, scene + " " + method + " spp " + std::to_string(spp) + " frame " + std::to_string(m.frame) + " (timing)");
-      t = Clock::now();
-    });
-    return median(std::move(ms));
+    std::vector<std::pair<std::string, uint32_t>> plays;
+    for (const report::Run* r : runs) plays.emplace_back(r->method, r->spp);
+    for (uint32_t round = 1; round < a_.timing_rounds; ++round) {
+      std::vector<std::vector<double>> ms(runs.size());
+      auto t = Clock::now();
+      client_.run_interleaved(scene, plays, a_, [&](size_t i, MethodImage&& m) {
+        if (m.frame >= a_.score_from) ms[i].push_back(m.gpu_ms);
+        step(m.frame, ms_since(t), m.gpu_ms,
+             scene + " " + plays[i].first + " spp " + std::to_string(plays[i].second) + " frame " + std::to_string(m.frame) + " (timing)");
+        t = Clock::now();
+      });
+      for (size_t i = 0; i < runs.size(); ++i) runs[i]->round_ms.push_back(median(std::move(ms[i])));
+    }
   }
 
   // One method's run over the frames, scored; the last frame's image and HDR-FLIP map when asked.
@@ -320,8 +321,9 @@ Runner add_eval_command(CLI::App& app) {
   cmd->add_option("--max-depth", a->max_depth, "path segments (default: the server's)");
   cmd->add_flag("--equal-time", a->equal_time, "also run pt with as many spp as fit in each method's median frame time");
   cmd->add_option("--timing-rounds", a->timing_rounds,
-                  "runs of every method (and equal-time pt run), taken in turn; a run's time is the median of its rounds' "
-                  "median frame times (1..16)")
+                  "rounds of every method (and equal-time pt run): the scored run, then R - 1 rounds that play the "
+                  "runs' frames interleaved, one frame of each in turn; a run's time is the median of its rounds' median "
+                  "frame times (1..16)")
       ->check(CLI::Range(1u, 16u))
       ->capture_default_str();
   cmd->add_option("--exposure", a->exposure, "exposure of the PNG insets in stops")->capture_default_str();

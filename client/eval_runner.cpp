@@ -6,6 +6,7 @@
 
 #include "connection.h"
 #include "eval_frames.h"
+#include "eval_session.h"
 
 namespace strata::client {
 namespace {
@@ -18,7 +19,9 @@ std::string joined(const std::vector<std::string>& items) {
   return s;
 }
 
-image::Image decode(const v1::Image& img) {
+}  // namespace
+
+image::Image decode_image(const v1::Image& img) {
   const auto& d = img.data();
   const std::span<const uint8_t> bytes(reinterpret_cast<const uint8_t*>(d.data()), d.size());
   if (img.encoding() == v1::IMAGE_ENCODING_EXR_HALF) return image::decode_exr(bytes);
@@ -26,8 +29,6 @@ image::Image decode(const v1::Image& img) {
   throw std::runtime_error("the server sent an image in encoding " + std::to_string(int(img.encoding())) +
                            ", not EXR_HALF or RAW_RGBA16F");
 }
-
-}  // namespace
 
 EvalClient::EvalClient(const ConnectionOptions& conn, double timeout_s) : address_(conn.server), timeout_s_(timeout_s) {
   const std::string affinity = new_session_id();
@@ -113,7 +114,7 @@ ReferenceImage EvalClient::reference(const std::string& scene, uint32_t frame, c
   ReferenceImage out;
   auto st = stub_->RenderReference(&ctx, req, &out.info);
   if (!st.ok()) throw RpcError("RenderReference (" + scene + " frame " + std::to_string(frame) + ")", st);
-  out.image = decode(out.info.image());
+  out.image = decode_image(out.info.image());
   const auto& mask = out.info.disoccluded_mask();
   if (!mask.empty()) {
     if (mask.size() != size_t(s.width) * s.height)
@@ -128,73 +129,19 @@ ReferenceImage EvalClient::reference(const std::string& scene, uint32_t frame, c
 
 void EvalClient::run_method(const std::string& scene, const std::string& method, uint32_t spp, const EvalSettings& s,
                             const std::function<void(MethodImage&&)>& on_frame) {
-  v1::CreateSessionRequest req;
-  *req.mutable_scene() = scene_source(scene);
-  req.mutable_resolution()->set_width(s.width);
-  req.mutable_resolution()->set_height(s.height);
-  req.set_method(method);
-  req.set_seed(s.seed);
-  req.mutable_options()->set_spp(spp);
-  if (s.max_depth) req.mutable_options()->set_max_depth(s.max_depth);
-  if (s.splats_per_frame) req.mutable_options()->set_splats_per_frame(*s.splats_per_frame);
-  set_restir_options(s.restir, *req.mutable_options());
-  req.add_encodings(v1::IMAGE_ENCODING_RAW_RGBA16F);
-  v1::Session session;
-  {
-    grpc::ClientContext ctx;
-    set_deadline(ctx, timeout());
-    auto st = stub_->CreateSession(&ctx, req, &session);
-    if (!st.ok()) throw RpcError("CreateSession (" + scene + ", " + method + ", spp " + std::to_string(spp) + ")", st);
-  }
-  auto remove = [&] {
-    grpc::ClientContext ctx;
-    set_deadline(ctx, std::chrono::seconds(30));
-    v1::DeleteSessionRequest del;
-    del.set_name(session.name());
-    google::protobuf::Empty empty;
-    return stub_->DeleteSession(&ctx, del, &empty);
-  };
-  try {
-    grpc::ClientContext ctx;
-    set_deadline(ctx, timeout());
-    auto stream = stub_->Stream(&ctx);
-    uint32_t received = 0;
-    try {
-    for (uint32_t f = 0; f < s.frames; ++f) {  // lockstep: every input gets its own frame
-      v1::FrameInput in = eval_frame_input(s, f);
-      if (f == 0) in.set_session(session.name());
-      in.set_sequence(f + 1);
-      if (!stream->Write(in)) break;
-      v1::Frame frame;
-      if (!stream->Read(&frame)) break;
-      if (frame.input_sequence() != f + 1 || frame.images_size() == 0)
-        throw std::runtime_error("Stream: frame " + std::to_string(frame.frame_index()) + " answers input " +
-                                 std::to_string(frame.input_sequence()) + ", expected " + std::to_string(f + 1));
-      MethodImage m;
-      m.frame = f;
-      m.image = decode(frame.images(0));
-      m.gpu_ms = frame.gpu_ms_total();
-      for (const auto& p : frame.pass_ms()) m.pass_ms[p.pass()] += p.ms();
-      on_frame(std::move(m));
-      ++received;
-    }
-    } catch (...) {
-      ctx.TryCancel();  // ends the call before the stream goes
-      (void)stream->Finish();
-      throw;
-    }
-    stream->WritesDone();
-    const grpc::Status st = stream->Finish();
-    if (!st.ok()) throw RpcError("Stream (" + scene + ", " + method + ")", st);
-    if (received != s.frames)
-      throw std::runtime_error("Stream (" + scene + ", " + method + "): the server ended the stream after " +
-                               std::to_string(received) + " of " + std::to_string(s.frames) + " frames");
-  } catch (...) {
-    remove();
-    throw;
-  }
-  const auto st = remove();
-  if (!st.ok()) throw RpcError("DeleteSession", st);
+  EvalSession session(*stub_, scene_source(scene), scene, method, spp, s, timeout());
+  for (uint32_t f = 0; f < s.frames; ++f) on_frame(session.next(f));
+  session.finish();
+}
+
+void EvalClient::run_interleaved(const std::string& scene, const std::vector<std::pair<std::string, uint32_t>>& runs,
+                                 const EvalSettings& s, const std::function<void(size_t, MethodImage&&)>& on_frame) {
+  std::vector<std::unique_ptr<EvalSession>> sessions;
+  for (const auto& [method, spp] : runs)
+    sessions.push_back(std::make_unique<EvalSession>(*stub_, scene_source(scene), scene, method, spp, s, timeout()));
+  for (uint32_t f = 0; f < s.frames; ++f)
+    for (size_t i = 0; i < sessions.size(); ++i) on_frame(i, sessions[i]->next(f));
+  for (auto& session : sessions) session->finish();
 }
 
 }  // namespace strata::client

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "connection_options.h"
@@ -55,6 +56,9 @@ struct MethodImage {
   std::map<std::string, double> pass_ms;
 };
 
+// A frame's image as the server encoded it (EXR_HALF or RAW_RGBA16F).
+image::Image decode_image(const v1::Image& img);
+
 class EvalClient {
  public:
   // Connects and reads the server's status (its limits size the channel for frames). Every call
@@ -77,6 +81,12 @@ class EvalClient {
   // lockstep (RAW_RGBA16F) and hands each frame to `on_frame`, then deletes the session.
   void run_method(const std::string& scene, const std::string& method, uint32_t spp, const EvalSettings& s,
                   const std::function<void(MethodImage&&)>& on_frame);
+
+  // A session for each (method, spp) of `runs`, all open at once, played frame by frame in turn:
+  // frame f of every run before frame f + 1 of any, one frame rendering at a time. A slow stretch
+  // of the machine then falls on every run alike (the timing rounds). `on_frame` gets the run's index.
+  void run_interleaved(const std::string& scene, const std::vector<std::pair<std::string, uint32_t>>& runs,
+                       const EvalSettings& s, const std::function<void(size_t, MethodImage&&)>& on_frame);
 
  private:
   v1::SceneSource scene_source(const std::string& scene) const;

@@ -217,6 +217,24 @@ TEST(EvalTest, TimingRoundsTimeEveryRunAndUseTheirMedian) {
   EXPECT_DOUBLE_EQ(et["method_median_ms"].get<double>(), time_of["restir-gather"]);
   EXPECT_DOUBLE_EQ(et["pt_median_ms"].get<double>(), time_of["pt@" + std::to_string(et["pt_spp"].get<int>())]);
   EXPECT_DOUBLE_EQ(doc["meta"]["pt_ms_per_spp"]["cornell"].get<double>(), time_of["pt"]);
+  // The later rounds play the methods interleaved, frame f of each in turn: the progress lines of
+  // the timed frames (one per frame, not a terminal) alternate between pt and restir-gather.
+  std::vector<std::string> timed;  // "method frame" of each "(timing)" line, in order
+  std::istringstream lines(result.output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find("(timing)") == std::string::npos || line.find("spp 1 ") == std::string::npos) continue;
+    const auto at = line.find("cornell ");
+    ASSERT_NE(at, std::string::npos) << line;
+    std::istringstream words(line.substr(at));
+    std::string scene, method, spp_word, spp, frame_word, frame;
+    words >> scene >> method >> spp_word >> spp >> frame_word >> frame;
+    timed.push_back(method + " " + frame);
+  }
+  ASSERT_EQ(timed.size(), 2u * 2u * 3u) << result.output;  // 2 rounds x 2 methods x 3 frames
+  for (size_t i = 0; i < timed.size(); ++i) {
+    const size_t frame = (i / 2) % 3;
+    EXPECT_EQ(timed[i], std::string(i % 2 == 0 ? "pt " : "restir-gather ") + std::to_string(frame)) << i;
+  }
 
   args = eval_args(daemon.address(), dir.path / "bad");
   for (const char* a : {"--timing-rounds", "0"}) args.push_back(a);

@@ -1,0 +1,42 @@
+#pragma once
+// One method's session of `strata eval`: CreateSession, a Stream played in lockstep over the eval's
+// frames (eval_frames.h: every input gets its own frame, RAW_RGBA16F), and DeleteSession. Several
+// can be open at once on one channel, which is how the timing rounds interleave the methods frame
+// by frame (EvalClient::run_interleaved).
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "eval_runner.h"
+
+namespace strata::client {
+
+class EvalSession {
+ public:
+  // Creates the session (method, spp and the eval's options) and opens its stream.
+  EvalSession(v1::RenderService::Stub& stub, const v1::SceneSource& scene, const std::string& scene_name,
+              const std::string& method, uint32_t spp, const EvalSettings& s, std::chrono::milliseconds timeout);
+  // Cancels an unfinished stream and deletes the session (errors are not reported here: finish()
+  // reports them).
+  ~EvalSession();
+  EvalSession(const EvalSession&) = delete;
+  EvalSession& operator=(const EvalSession&) = delete;
+
+  // Sends frame f's input and waits for its frame; throws when the stream ends or answers another input.
+  MethodImage next(uint32_t f);
+  // Ends the stream and deletes the session; throws with the status of either when it failed.
+  void finish();
+
+ private:
+  v1::RenderService::Stub& stub_;
+  const EvalSettings& s_;
+  std::string what_;  // "scene, method" for errors
+  v1::Session session_;
+  grpc::ClientContext ctx_;
+  std::unique_ptr<grpc::ClientReaderWriter<v1::FrameInput, v1::Frame>> stream_;
+  uint32_t received_ = 0;
+  bool finished_ = false;
+};
+
+}  // namespace strata::client
