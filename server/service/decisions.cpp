@@ -1,6 +1,7 @@
 // Session decisions: for the method (its method-table row), every option and the path tracer's
 // features, what was requested, what the session uses, whether it applies, and why.
 #include <algorithm>
+#include <optional>
 
 #include "service/input_checks.h"
 #include "service/options.h"
@@ -20,6 +21,16 @@ v1::Decision make(const std::string& name, const std::string& requested, const s
 }
 
 std::string u(uint32_t v) { return std::to_string(v); }
+
+// The session's layer count: 1 without pixel layers, else as requested or as `layers auto` measured
+// it on the first frame; none while auto has not measured yet.
+std::optional<uint32_t> layers_in_use(const render::MethodSpec& method, const v1::RenderOptions& eff,
+                                      const std::optional<render::LayerCount>& measured) {
+  if (!method.layers) return 1u;
+  if (eff.layers() != 0) return eff.layers();
+  if (measured) return measured->layers;
+  return std::nullopt;
+}
 
 }  // namespace
 
@@ -135,7 +146,7 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
   const render::RestirOptions options = restir_options(eff);
   {
     // k layers: requested, measured, or (auto, before the first frame) assumed deep.
-    const uint32_t k = !method.layers ? 1u : eff.layers() != 0 ? eff.layers() : measured_layers ? measured_layers->layers : 2u;
+    const uint32_t k = layers_in_use(method, eff, measured_layers).value_or(2u);
     const uint32_t n = options.disocclusion_candidates(method, k);  // 0: no boost
     const bool splat_sort = temporal && method.splatting;
     out.push_back(make("disocclusion_initial_candidates",
@@ -203,15 +214,13 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
   }
   {
     const std::string requested = asked(req.has_layers(), req.layers() == 0 ? "auto" : u(req.layers()));
-    std::string value = "1", reason = "method " + m + " has no pixel layers; used by multi-layer methods";
+    const std::optional<uint32_t> k = layers_in_use(method, eff, measured_layers);
+    std::string value = k ? u(*k) : "auto", reason = "method " + m + " has no pixel layers; used by multi-layer methods";
     if (method.layers && eff.layers() != 0) {
-      value = u(eff.layers());
       reason = "requested";
     } else if (method.layers && measured_layers) {
-      value = u(measured_layers->layers);
       reason = "auto, measured on the scene's first frame: " + measured_layers->reason;
     } else if (method.layers) {
-      value = "auto";
       reason = "auto: measured from the scene's visible depth complexity on its first frame (pixel-centre rays walked "
                "through their surfaces; a deep layer is kept while 10% of them reach it); every Frame's domain_init "
                "pass decision gives the count and the measured shares";

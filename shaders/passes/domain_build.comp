@@ -2,7 +2,8 @@
 // Pass `domain_build` (stage domain_init; ML 4.2, 4.3, Sec. 5): per pixel, the representative hits
 // of its deep layers and the depth ranges of all its layers for this frame.
 //   - How deep to look: the deepest layer that domain_propagate marked here or, for hole filling,
-//     within hole_fill_radius pixels (every layer with layer_mode uniform).
+//     within hole_fill_radius pixels where the pixel lies within silhouette_band of a silhouette
+//     (elsewhere a filled domain would be inactive); every layer with layer_mode uniform.
 //   - The representative hits c_{p,i}: the pixel-centre ray (the primary stage's, whose first hit
 //     is layer 0) walked on through its surfaces, front faces counted (restir/layer_data.h); each
 //     is stored as the visibility-buffer entry of its domain, with its surface in this frame.
@@ -74,17 +75,6 @@ bool marked(ivec2 q, uint layer) {
   return in_image(q) && b_marks[domain_of(uvec2(q), layer)].occluder_min != OCCLUDER_NONE;
 }
 
-// The deepest layer this pixel must find: marked here, or (hole filling) within the radius.
-uint deepest_needed(uvec2 pixel) {
-  int r = int(u_restir.hole_fill_radius);
-  for (uint i = u_restir.layers - 1u; i >= 1u; --i) {
-    for (int dy = -r; dy <= r; ++dy)
-      for (int dx = -r; dx <= r; ++dx)
-        if (dx * dx + dy * dy <= r * r && marked(ivec2(pixel) + ivec2(dx, dy), i)) return i;
-  }
-  return 0u;
-}
-
 bool silhouette(uvec2 pixel, GpuPrimaryHit front) {
   const ivec2 steps[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
   for (uint j = 0u; j < 4u; ++j) {
@@ -96,6 +86,42 @@ bool silhouette(uvec2 pixel, GpuPrimaryHit front) {
       return true;
   }
   return false;
+}
+
+// Whether a front-layer silhouette (DOMAIN_SILHOUETTE, as main sets it) lies within silhouette_band
+// pixels: domain_fill's test, read here from the primary hits, which this pass does not write.
+bool near_silhouette(uvec2 pixel) {
+  int r = int(u_restir.silhouette_band);
+  for (int dy = -r; dy <= r; ++dy)
+    for (int dx = -r; dx <= r; ++dx) {
+      ivec2 q = ivec2(pixel) + ivec2(dx, dy);
+      if (dx * dx + dy * dy > r * r || !in_image(q)) continue;
+      GpuPrimaryHit n = b_primary[domain_of(uvec2(q), 0u)];
+      if ((n.flags & PRIMARY_HIT) != 0u && silhouette(uvec2(q), n)) return true;
+    }
+  return false;
+}
+
+// The deepest layer this pixel must find: marked here (the occluder check decides whether it is
+// active or dormant, and a dormant one keeps propagating), or, for hole filling, marked within
+// hole_fill_radius pixels. With the silhouette band, a hole-filled domain farther than the band
+// from every silhouette is inactive (domain_fill), so its representative hit would go unused: such
+// a pixel walks for its own marks only.
+uint deepest_needed(uvec2 pixel) {
+  int r = int(u_restir.hole_fill_radius);
+  int near = u_restir.silhouette_band == 0u ? 1 : -1;  // a silhouette within the band, once asked
+  for (uint i = u_restir.layers - 1u; i >= 1u; --i) {
+    if (marked(ivec2(pixel), i)) return i;
+    if (r == 0 || near == 0) continue;
+    bool fill = false;
+    for (int dy = -r; dy <= r && !fill; ++dy)
+      for (int dx = -r; dx <= r && !fill; ++dx)
+        fill = dx * dx + dy * dy <= r * r && marked(ivec2(pixel) + ivec2(dx, dy), i);
+    if (!fill) continue;
+    if (near < 0) near = near_silhouette(pixel) ? 1 : 0;
+    if (near == 1) return i;
+  }
+  return 0u;
 }
 
 GpuPrimaryHit entry_of(RayHit h, float t, SurfaceHit s) {
