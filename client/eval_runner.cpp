@@ -136,12 +136,17 @@ void EvalClient::run_method(const std::string& scene, const std::string& method,
 
 void EvalClient::run_interleaved(const std::string& scene, const std::vector<std::pair<std::string, uint32_t>>& runs,
                                  const EvalSettings& s, const std::function<void(size_t, MethodImage&&)>& on_frame) {
-  std::vector<std::unique_ptr<EvalSession>> sessions;
-  for (const auto& [method, spp] : runs)
-    sessions.push_back(std::make_unique<EvalSession>(*stub_, scene_source(scene), scene, method, spp, s, timeout()));
-  for (uint32_t f = 0; f < s.frames; ++f)
-    for (size_t i = 0; i < sessions.size(); ++i) on_frame(i, sessions[i]->next(f));
-  for (auto& session : sessions) session->finish();
+  // At most the server's max_sessions at once: more runs play in groups, each interleaved.
+  const size_t group = std::max<size_t>(1, status_.limits().max_sessions());
+  for (size_t first = 0; first < runs.size(); first += group) {
+    const size_t end = std::min(runs.size(), first + group);
+    std::vector<std::unique_ptr<EvalSession>> sessions;
+    for (size_t i = first; i < end; ++i)
+      sessions.push_back(std::make_unique<EvalSession>(*stub_, scene_source(scene), scene, runs[i].first, runs[i].second, s, timeout()));
+    for (uint32_t f = 0; f < s.frames; ++f)
+      for (size_t i = first; i < end; ++i) on_frame(i, sessions[i - first]->next(f));
+    for (auto& session : sessions) session->finish();
+  }
 }
 
 }  // namespace strata::client

@@ -31,7 +31,7 @@ struct EvalSettings {
   uint32_t reference_spp = 1024;
   float reference_error = 0.0f;    // 0: no early stop
   bool equal_time = false;
-  uint32_t timing_rounds = 1;      // runs of each method whose median frame times are its time
+  uint32_t timing_rounds = 1;      // rounds of each method (the scored run, then interleaved ones) whose median frame times are its time
   std::string camera_path;         // empty: each scene's default animation
   std::vector<v1::FrameInput> path;  // its entries, one per frame (eval_frames.h)
   std::optional<float> shutter;    // --shutter: every entry's camera.shutter
@@ -84,7 +84,8 @@ class EvalClient {
 
   // A session for each (method, spp) of `runs`, all open at once, played frame by frame in turn:
   // frame f of every run before frame f + 1 of any, one frame rendering at a time. A slow stretch
-  // of the machine then falls on every run alike (the timing rounds). `on_frame` gets the run's index.
+  // of the machine then falls on every run alike (the timing rounds). More runs than the server's
+  // max_sessions play in groups of that many. `on_frame` gets the run's index.
   void run_interleaved(const std::string& scene, const std::vector<std::pair<std::string, uint32_t>>& runs,
                        const EvalSettings& s, const std::function<void(size_t, MethodImage&&)>& on_frame);
 

@@ -236,6 +236,15 @@ TEST(EvalTest, TimingRoundsTimeEveryRunAndUseTheirMedian) {
     EXPECT_EQ(timed[i], std::string(i % 2 == 0 ? "pt " : "restir-gather ") + std::to_string(frame)) << i;
   }
 
+  // A daemon that holds one session at a time: the interleaved rounds play one run after the other.
+  Daemon single({"--max-sessions", "1", "--reference-cache", (dir.path / "cache").string()});
+  args = eval_args(single.address(), dir.path / "single");
+  for (const char* a : {"--timing-rounds", "2"}) args.push_back(a);
+  const auto one_at_a_time = run_process(args, 300s);
+  ASSERT_EQ(one_at_a_time.exit_code, 0) << one_at_a_time.output;
+  for (const auto& run : nlohmann::json::parse(read_file(dir.path / "single" / "results.json"))["runs"])
+    EXPECT_EQ(run["round_ms"].size(), 2u) << run["method"];
+
   args = eval_args(daemon.address(), dir.path / "bad");
   for (const char* a : {"--timing-rounds", "0"}) args.push_back(a);
   const auto bad = run_process(args, k_render_deadline);
