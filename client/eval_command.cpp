@@ -157,23 +157,42 @@ class Evaluation {
   // interleaved (frame f of each run in turn, EvalClient::run_interleaved), so that a slow stretch
   // of the machine, which on lavapipe moves frame times by up to 30% over a minute, falls on all of
   // them alike. Each run keeps the median frame time of every round (round_ms, the scored run's
-  // first) and its time is their median. The errors are deterministic for the seed, so the later
+  // first) and its time is their median; round_pass_ms the same per pass. The errors are deterministic for the seed, so the later
   // rounds' frames are timed, not scored.
   void time_rounds(const std::string& scene, const std::vector<report::Run*>& runs) {
     if (a_.timing_rounds <= 1) return;
-    for (report::Run* r : runs) r->round_ms = {median_gpu_ms(*r)};
+    using PassMs = std::map<std::string, std::vector<double>>;  // per pass, its ms of every frame
+    auto medians = [](PassMs& passes) {
+      std::map<std::string, double> out;
+      for (auto& [pass, ms] : passes) out[pass] = median(std::move(ms));
+      return out;
+    };
+    for (report::Run* r : runs) {
+      r->round_ms = {median_gpu_ms(*r)};
+      PassMs passes;
+      for (const auto& f : r->frames)
+        for (const auto& [pass, ms] : f.pass_ms) passes[pass].push_back(ms);
+      r->round_pass_ms = {medians(passes)};
+    }
     std::vector<std::pair<std::string, uint32_t>> plays;
     for (const report::Run* r : runs) plays.emplace_back(r->method, r->spp);
     for (uint32_t round = 1; round < a_.timing_rounds; ++round) {
       std::vector<std::vector<double>> ms(runs.size());
+      std::vector<PassMs> passes(runs.size());
       auto t = Clock::now();
       client_.run_interleaved(scene, plays, a_, [&](size_t i, MethodImage&& m) {
-        if (m.frame >= a_.score_from) ms[i].push_back(m.gpu_ms);
+        if (m.frame >= a_.score_from) {
+          ms[i].push_back(m.gpu_ms);
+          for (const auto& [pass, p_ms] : m.pass_ms) passes[i][pass].push_back(p_ms);
+        }
         step(m.frame, ms_since(t), m.gpu_ms,
              scene + " " + plays[i].first + " spp " + std::to_string(plays[i].second) + " frame " + std::to_string(m.frame) + " (timing)");
         t = Clock::now();
       });
-      for (size_t i = 0; i < runs.size(); ++i) runs[i]->round_ms.push_back(median(std::move(ms[i])));
+      for (size_t i = 0; i < runs.size(); ++i) {
+        runs[i]->round_ms.push_back(median(std::move(ms[i])));
+        runs[i]->round_pass_ms.push_back(medians(passes[i]));
+      }
     }
   }
 

@@ -33,6 +33,7 @@ nlohmann::json run_json(const Run& run) {
           {"equal_time_pt", run.equal_time_pt},
           {"matched_method", run.matched_method},
           {"round_ms", run.round_ms},
+          {"round_pass_ms", run.round_pass_ms},
           {"frames", std::move(frames)}};
 }
 

@@ -40,6 +40,8 @@ struct Run {
   // first is `frames`'s own; the errors are the same every round, the ms are not). The run's time
   // is their median (median_gpu_ms).
   std::vector<double> round_ms;
+  // The same per pass: each round's median ms of every pass (the first round's from `frames`).
+  std::vector<std::map<std::string, double>> round_pass_ms;
 };
 
 // Equal-time comparison: pt with `pt_spp` samples per frame against a method's median frame time.

@@ -209,6 +209,11 @@ TEST(EvalTest, TimingRoundsTimeEveryRunAndUseTheirMedian) {
     ASSERT_EQ(run["frames"].size(), 3u) << "the errors are the first round's frames";
     const auto rounds = run["round_ms"].get<std::vector<double>>();
     for (double ms : rounds) EXPECT_GT(ms, 0.0);
+    ASSERT_EQ(run["round_pass_ms"].size(), 3u) << run["method"];  // each round's median ms per pass
+    for (const auto& passes : run["round_pass_ms"]) {
+      EXPECT_FALSE(passes.empty()) << run["method"];
+      for (const auto& [pass, ms] : passes.items()) EXPECT_GE(ms.get<double>(), 0.0) << pass;
+    }
     const std::string key = run["equal_time_pt"].get<bool>() ? "pt@" + std::to_string(run["spp"].get<int>()) : run["method"].get<std::string>();
     time_of[key] = median_of(rounds);
   }
