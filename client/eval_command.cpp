@@ -153,46 +153,48 @@ class Evaluation {
   }
 
  private:
+  // One round's frame times of a run: its frames' GPU ms and every pass's ms.
+  struct RoundTimes {
+    std::vector<double> gpu;
+    std::map<std::string, std::vector<double>> passes;
+    void add(double gpu_ms, const std::map<std::string, double>& pass_ms) {
+      gpu.push_back(gpu_ms);
+      for (const auto& [pass, ms] : pass_ms) passes[pass].push_back(ms);
+    }
+    // The round's medians, appended to the run's round_ms and round_pass_ms.
+    void append_to(report::Run& run) {
+      run.round_ms.push_back(median(std::move(gpu)));
+      std::map<std::string, double> per_pass;
+      for (auto& [pass, ms] : passes) per_pass[pass] = median(std::move(ms));
+      run.round_pass_ms.push_back(std::move(per_pass));
+    }
+  };
+
   // --timing-rounds R: R - 1 more rounds of `runs`, each round playing every run's frames
   // interleaved (frame f of each run in turn, EvalClient::run_interleaved), so that a slow stretch
   // of the machine, which on lavapipe moves frame times by up to 30% over a minute, falls on all of
   // them alike. Each run keeps the median frame time of every round (round_ms, the scored run's
-  // first) and its time is their median; round_pass_ms the same per pass. The errors are deterministic for the seed, so the later
-  // rounds' frames are timed, not scored.
+  // first; round_pass_ms per pass), and its time is their median. The errors are deterministic for
+  // the seed, so the later rounds' frames are timed, not scored.
   void time_rounds(const std::string& scene, const std::vector<report::Run*>& runs) {
     if (a_.timing_rounds <= 1) return;
-    using PassMs = std::map<std::string, std::vector<double>>;  // per pass, its ms of every frame
-    auto medians = [](PassMs& passes) {
-      std::map<std::string, double> out;
-      for (auto& [pass, ms] : passes) out[pass] = median(std::move(ms));
-      return out;
-    };
     for (report::Run* r : runs) {
-      r->round_ms = {median_gpu_ms(*r)};
-      PassMs passes;
-      for (const auto& f : r->frames)
-        for (const auto& [pass, ms] : f.pass_ms) passes[pass].push_back(ms);
-      r->round_pass_ms = {medians(passes)};
+      RoundTimes scored;
+      for (const auto& f : r->frames) scored.add(f.gpu_ms, f.pass_ms);
+      scored.append_to(*r);
     }
     std::vector<std::pair<std::string, uint32_t>> plays;
     for (const report::Run* r : runs) plays.emplace_back(r->method, r->spp);
     for (uint32_t round = 1; round < a_.timing_rounds; ++round) {
-      std::vector<std::vector<double>> ms(runs.size());
-      std::vector<PassMs> passes(runs.size());
+      std::vector<RoundTimes> times(runs.size());
       auto t = Clock::now();
       client_.run_interleaved(scene, plays, a_, [&](size_t i, MethodImage&& m) {
-        if (m.frame >= a_.score_from) {
-          ms[i].push_back(m.gpu_ms);
-          for (const auto& [pass, p_ms] : m.pass_ms) passes[i][pass].push_back(p_ms);
-        }
+        if (m.frame >= a_.score_from) times[i].add(m.gpu_ms, m.pass_ms);
         step(m.frame, ms_since(t), m.gpu_ms,
              scene + " " + plays[i].first + " spp " + std::to_string(plays[i].second) + " frame " + std::to_string(m.frame) + " (timing)");
         t = Clock::now();
       });
-      for (size_t i = 0; i < runs.size(); ++i) {
-        runs[i]->round_ms.push_back(median(std::move(ms[i])));
-        runs[i]->round_pass_ms.push_back(medians(passes[i]));
-      }
+      for (size_t i = 0; i < runs.size(); ++i) times[i].append_to(*runs[i]);
     }
   }
 

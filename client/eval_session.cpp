@@ -35,12 +35,16 @@ EvalSession::~EvalSession() {
   if (finished_) return;
   ctx_.TryCancel();  // ends the call before the stream goes
   (void)stream_->Finish();
+  (void)delete_session();
+}
+
+grpc::Status EvalSession::delete_session() {
   grpc::ClientContext ctx;
   set_deadline(ctx, std::chrono::seconds(30));
   v1::DeleteSessionRequest del;
   del.set_name(session_.name());
   google::protobuf::Empty empty;
-  (void)stub_.DeleteSession(&ctx, del, &empty);
+  return stub_.DeleteSession(&ctx, del, &empty);
 }
 
 MethodImage EvalSession::next(uint32_t f) {
@@ -70,12 +74,7 @@ void EvalSession::finish() {
   finished_ = true;
   stream_->WritesDone();
   const grpc::Status st = stream_->Finish();
-  grpc::ClientContext ctx;
-  set_deadline(ctx, std::chrono::seconds(30));
-  v1::DeleteSessionRequest del;
-  del.set_name(session_.name());
-  google::protobuf::Empty empty;
-  const grpc::Status deleted = stub_.DeleteSession(&ctx, del, &empty);
+  const grpc::Status deleted = delete_session();
   if (!st.ok()) throw RpcError("Stream (" + what_ + ")", st);
   if (!deleted.ok()) throw RpcError("DeleteSession", deleted);
 }

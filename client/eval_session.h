@@ -29,6 +29,8 @@ class EvalSession {
   void finish();
 
  private:
+  grpc::Status delete_session();
+
   v1::RenderService::Stub& stub_;
   const EvalSettings& s_;
   std::string what_;  // "scene, method" for errors

@@ -157,7 +157,8 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                        : !temporal          ? no_temporal
                        : n == 0             ? "pixels no splat reached take initial_candidates like every other pixel"
                        : method.layers      ? "candidate paths of the disoccluded pixels no splat reached: surfaces no deep domain held "
-                                              "(restir-multilayer's default 4; landing holes of surfaces in view take initial_candidates)"
+                                              "(" + m + "'s default " + u(method.disocclusion_initial_candidates) +
+                                                  "; landing holes of surfaces in view take initial_candidates)"
                                             : "candidate paths of the pixels no splat reached (the splat sort runs before the initial pass; ML Fig. 9 \"more initial spp\")"));
   }
   const bool visibility_buffer = options.visibility_buffer(method.fixed_primary);
