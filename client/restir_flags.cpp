@@ -34,6 +34,9 @@ void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
   cmd->add_option("--silhouette-band", r.silhouette_band,
                   "restir-multilayer: deep domains farther than this many pixels from a front-layer silhouette are dormant, "
                   "tracked but not sampled (0..32; 0: off; default 1)");
+  cmd->add_option("--deep-backup", r.deep_backup,
+                  "restir-multilayer: a disoccluded pixel takes the previous deep domain that held its hit as a backup sample "
+                  "(RS-main 4.2 across layers; true | false; default true)");
   cmd->add_option("--layer-mode", r.layer_mode,
                   "restir-multilayer: active | uniform | no-depth-ranges (the ML paper's validation variants; default active)")
       ->check(CLI::IsMember({"active", "uniform", "no-depth-ranges"}));
@@ -75,6 +78,7 @@ std::string restir_flags_text(const RestirFlags& r) {
   if (r.layers) add("--layers", std::to_string(*r.layers));
   if (r.hole_fill_radius) add("--hole-fill-radius", std::to_string(*r.hole_fill_radius));
   if (r.silhouette_band) add("--silhouette-band", std::to_string(*r.silhouette_band));
+  if (r.deep_backup) add("--deep-backup", *r.deep_backup ? "true" : "false");
   if (!r.layer_mode.empty()) add("--layer-mode", r.layer_mode);
   if (!r.lod_mapping.empty()) add("--lod-mapping", r.lod_mapping);
   if (r.lod_matching) add("--lod-matching", *r.lod_matching ? "true" : "false");
@@ -111,6 +115,7 @@ void set_restir_options(const RestirFlags& r, v1::RenderOptions& o) {
   if (r.layers) o.set_layers(*r.layers);
   if (r.hole_fill_radius) o.set_hole_fill_radius(*r.hole_fill_radius);
   if (r.silhouette_band) o.set_silhouette_band(*r.silhouette_band);
+  if (r.deep_backup) o.set_deep_backup(*r.deep_backup);
   if (r.layer_mode == "active") o.set_layer_mode(v1::LAYER_MODE_ACTIVE);
   else if (r.layer_mode == "uniform") o.set_layer_mode(v1::LAYER_MODE_UNIFORM);
   else if (r.layer_mode == "no-depth-ranges") o.set_layer_mode(v1::LAYER_MODE_NO_DEPTH_RANGES);

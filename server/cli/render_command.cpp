@@ -132,6 +132,9 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_option("--silhouette-band", r.silhouette_band,
                   "restir-multilayer: deep domains farther than this many pixels from a front-layer silhouette are dormant (0..32; 0: off)")
       ->capture_default_str();
+  cmd->add_option("--deep-backup", r.deep_backup,
+                  "restir-multilayer: a disoccluded pixel takes the previous deep domain that held its hit as a backup sample (true | false)")
+      ->capture_default_str();
   cmd->add_option("--hole-fill-radius", r.hole_fill_radius, "restir-multilayer: hole filling radius in pixels (0..8; 0: off)")
       ->capture_default_str();
   cmd->add_option("--layer-mode", r.layer_mode, "restir-multilayer: active | uniform | no-depth-ranges (ML validation variants)")

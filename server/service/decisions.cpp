@@ -243,6 +243,16 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                            ? "off: every activated deep domain samples (ML 4.3)"
                            : "deep domains farther than this from a silhouette of the front layer are tracked (their representative hits "
                              "propagate) but sample nothing until an edge comes this near (not in the ML paper; docs/BENCHMARKS.md)"));
+    const bool deep_backup_used = method.layers && eff.layer_mode() == v1::LAYER_MODE_ACTIVE && temporal && eff.deep_backup();
+    out.push_back(make("deep_backup", asked(req.has_deep_backup(), req.deep_backup() ? "true" : "false"),
+                       eff.deep_backup() ? "true" : "false", deep_backup_used,
+                       !method.layers ? not_layers
+                       : eff.layer_mode() != v1::LAYER_MODE_ACTIVE
+                           ? "only layer_mode active (the validation variants are the ML paper's: splats only)"
+                       : !temporal          ? no_temporal
+                       : !eff.deep_backup() ? "off: a disoccluded pixel has history only where a deep splat lands (ML 4.2)"
+                                            : "a disoccluded pixel whose hit an active previous deep domain held takes that domain's "
+                                              "reservoir as a backup sample (RS-main 4.2 across layers; not in the ML paper)"));
     out.push_back(make("layer_mode", asked(req.has_layer_mode(), layer_mode_name(req.layer_mode())), layer_mode_name(eff.layer_mode()),
                        method.layers,
                        !method.layers ? not_layers

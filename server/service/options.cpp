@@ -116,6 +116,7 @@ render::RestirOptions restir_options(const v1::RenderOptions& e) {
   r.layers = e.layers();
   r.hole_fill_radius = e.hole_fill_radius();
   r.silhouette_band = e.silhouette_band();
+  r.deep_backup = e.deep_backup();
   r.layer_mode = layer_mode_name(e.layer_mode());
   r.lod_mapping = lod_mapping_name(e.lod_mapping());
   r.lod_matching = e.lod_matching();
@@ -160,6 +161,7 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const render
   o.set_layers(restir.layers);
   o.set_hole_fill_radius(restir.hole_fill_radius);
   o.set_silhouette_band(restir.silhouette_band);
+  o.set_deep_backup(restir.deep_backup);
   o.set_layer_mode(v1::LAYER_MODE_ACTIVE);
   o.set_lod_matching(restir.lod_matching);
   o.set_lod_vertices(v1::LOD_VERTICES_BOTH);

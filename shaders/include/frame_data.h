@@ -104,7 +104,7 @@ CONST_DEF uint COUNTER_DOMAINS_FILLED = 49u;        // deep domains activated by
 CONST_DEF uint COUNTER_DOMAINS_UNIFORM = 50u;       // deep domains a uniform k-layer scheme keeps (layers the centre ray found)
 CONST_DEF uint COUNTER_DOMAINS_OCCLUDER = 51u;      // propagated marks refused by the occluder check (ML Sec. 5)
 CONST_DEF uint COUNTER_DISOCCLUDED = 52u;           // front-layer pixels whose centre hit was hidden from the previous camera
-CONST_DEF uint COUNTER_DISOCCLUDED_COVERED = 53u;   // of those, pixels that received a splat from a previous deep domain
+CONST_DEF uint COUNTER_DISOCCLUDED_COVERED = 53u;   // of those, pixels that received a sample from a previous deep domain (splat or deep backup)
 CONST_DEF uint COUNTER_RAYS_DOMAIN_INIT = 54u;      // rays of the domain_init passes
 CONST_DEF uint COUNTER_SPLAT_RANGE_RAYS = 55u;      // closest-hit queries restricted to a depth range (layer assignment)
 CONST_DEF uint COUNTER_SPLAT_STEP_RAYS = 56u;       // stepping rays of the layer assignment without depth ranges
@@ -122,7 +122,9 @@ CONST_DEF uint COUNTER_LOD_UV_RAYS = 66u;           // UV-space queries
 CONST_DEF uint COUNTER_LOD_REFUSED = 67u;           // points on another level that were not mapped (mapping off)
 CONST_DEF uint COUNTER_DISOCCLUDED_HELD = 68u;     // restir-multilayer: disoccluded pixels whose hit an active previous deep domain's depth range held
 CONST_DEF uint COUNTER_DOMAINS_DORMANT = 69u;      // restir-multilayer: propagated deep domains far from every silhouette (tracked, not sampled)
-CONST_DEF uint COUNTER_COUNT = 70u;
+CONST_DEF uint COUNTER_DISOCCLUDED_SPLATTED = 70u;  // restir-multilayer: disoccluded pixels a splat from a previous deep domain reached
+CONST_DEF uint COUNTER_DISOCCLUDED_BACKUP = 71u;    // restir-multilayer: disoccluded pixels the deep backup's sample shifted into
+CONST_DEF uint COUNTER_COUNT = 72u;
 
 STRATA_NAMESPACE_END
 

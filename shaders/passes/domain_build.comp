@@ -215,7 +215,7 @@ void main() {
       r.flags = DOMAIN_HIT;
       if (i == 0u || uniform_mode) {
         r.flags |= DOMAIN_ACTIVE | DOMAIN_PROPAGATES;  // front layer: always; uniform: every layer
-        if (i == 0u && front_disoccluded) r.flags |= DOMAIN_DISOCCLUDED;
+        if (i == 0u && front_disoccluded) r.flags |= DOMAIN_DISOCCLUDED | (held ? DOMAIN_HELD : 0u);
         if (i == 0u && u_restir.silhouette_band > 0u && silhouette(pixel, front)) r.flags |= DOMAIN_SILHOUETTE;
       } else {
         GpuDomainMark m = b_marks[d];

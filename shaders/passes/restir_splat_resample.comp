@@ -63,6 +63,7 @@ float prev_confidence_at(ivec2 q, float d, float cap) {
 struct Backprojection {
   bool ok;
   uvec2 backup;
+  float distance;  // from the previous camera
   float confidence;
 };
 
@@ -70,6 +71,7 @@ Backprojection backproject_centre(GpuPrimaryHit centre, float cap) {
   Backprojection bp;
   bp.ok = false;
   bp.backup = uvec2(0u);
+  bp.distance = 0.0;
   bp.confidence = 0.0;
   ResolvedSurface before = resolve_surface(true, primary_surface(centre));
   if (before.reason != RESOLVE_OK) return bp;
@@ -78,12 +80,44 @@ Backprojection backproject_centre(GpuPrimaryHit centre, float cap) {
   if (!project(u_frame.prev_camera, u_frame.prev_width, u_frame.prev_height, p, vec3(0.0), bp.backup, sub)) return bp;
   bp.ok = true;
   float d = length(p);  // from the previous camera (the origin of its render space)
+  bp.distance = d;
   vec2 s = vec2(bp.backup) + sub - 0.5;  // continuous coordinates of pixel centres
   ivec2 b = ivec2(floor(s));
   vec2 t = s - vec2(b);
   bp.confidence = (1.0 - t.x) * (1.0 - t.y) * prev_confidence_at(b, d, cap) + t.x * (1.0 - t.y) * prev_confidence_at(b + ivec2(1, 0), d, cap) +
                   (1.0 - t.x) * t.y * prev_confidence_at(b + ivec2(0, 1), d, cap) + t.x * t.y * prev_confidence_at(b + ivec2(1, 1), d, cap);
   return bp;
+}
+
+// The backup domain b of this domain (RS-main 4.2), in the previous frame: restir-splat-backup's is
+// the front layer of the previous pixel the centre backprojects into. restir-multilayer's deep backup
+// (RESTIR_DEEP_BACKUP; docs/ARCHITECTURE.md, "The deep backup") extends it to pixel layers: a
+// disoccluded front pixel whose centre hit an active previous deep domain held (DOMAIN_HELD, a
+// geometric flag of domain_build) takes that deep domain, the one whose depth range holds the
+// backprojected hit, as its backup; its gather shifts are restricted to the domain of ML Eq. 4.
+struct BackupDomain {
+  bool ok;
+  uint layer;
+  float t_min;  // its depth range (0, 1e30 for the front layer)
+  float t_max;
+};
+
+BackupDomain backup_domain_of(uint index, uint layer, Backprojection bp) {
+  BackupDomain b;
+  b.ok = false;
+  b.layer = 0u;
+  b.t_min = 0.0;
+  b.t_max = 1e30;
+  if (!bp.ok) return b;
+  if ((u_restir.flags & RESTIR_SPLAT_BACKUP) != 0u) {
+    b.ok = true;
+    return b;
+  }
+  if ((u_restir.flags & RESTIR_DEEP_BACKUP) == 0u || k_layer_stepping || layer != 0u || (b_domains[index].flags & DOMAIN_HELD) == 0u)
+    return b;
+  b.layer = deep_layer_by_range(true, bp.backup, bp.distance, b.t_min, b.t_max);
+  b.ok = b.layer != 0u;
+  return b;
 }
 
 // The next splat record that landed in this pixel after record `after` (all of them when `first_pick`):
@@ -130,17 +164,18 @@ void main() {
   float c_star = canonical.confidence;
   bool moved = (u_frame.history_flags & HISTORY_SCENE_MOVED) != 0u;
   bool with_backup = (u_restir.flags & RESTIR_SPLAT_BACKUP) != 0u;
-  // RS-supp 3.2: with the backup, backup-domain confidences are scaled by alpha and splat-domain
-  // ones by 1 - alpha (alpha = 0.5). The same scale applies to a domain in every weight below, so
-  // the weights of every path still sum to one.
-  float alpha = with_backup ? 0.5 : 0.0;
   // The cap of this domain (RS-main 3.4): still_confidence_cap where the camera and the instance its
   // representative hit lies on did not move, else confidence_cap (docs/ARCHITECTURE.md, "Confidence cap").
   GpuPrimaryHit centre = b_primary[index];  // the visibility buffer is indexed by domain (layer 0: by pixel)
   float cap = confidence_cap_of(centre);
   Backprojection bp = backproject_centre(centre, cap);
-  bool backup_domain = with_backup && bp.ok;
-  Reservoir xb = backup_domain ? unpack_reservoir(b_in[prev_domain_of(bp.backup, 0u)]) : reservoir_empty();
+  BackupDomain bd = backup_domain_of(index, layer, bp);
+  bool backup_domain = bd.ok;
+  // RS-supp 3.2: with the backup, backup-domain confidences are scaled by alpha and splat-domain
+  // ones by 1 - alpha (alpha = 0.5). The same scale applies to a domain in every weight below, so
+  // the weights of every path still sum to one.
+  float alpha = with_backup || backup_domain ? 0.5 : 0.0;
+  Reservoir xb = backup_domain ? unpack_reservoir(b_in[prev_domain_of(bp.backup, bd.layer)]) : reservoir_empty();
   float c_b = backup_domain ? alpha * confidence_capped(xb.confidence, cap) : 0.0;
 
   Rng rng = rng_init(index, 0x5B1A7u, u_frame.frame_index, u_frame.seed);  // per domain (layer 0: the pixel)
@@ -153,14 +188,16 @@ void main() {
   // Every shift is a job of one loop with one shift_path call (lavapipe inlines a traversal per
   // call site). Jobs: 0 the canonical sample reverse-splatted (Eq. 13/21) into the previous front
   // layer, 1 the same into the deeper previous domain whose range holds it when 0 found it hidden
-  // (restir-multilayer), 2 the canonical sample into the backup pixel (Eq. 21), 3 the backup sample
-  // into this pixel (Y^b), 4 Y^b reverse-splatted (Eq. 22); then per splat s, Y_s into the backup
-  // pixel (Eq. 20) and its resampling.
-  const uint first_splat_job = 5u;
+  // (restir-multilayer), 2 the canonical sample into the backup domain (Eq. 21), 3 the backup sample
+  // into this pixel (Y^b), 4 Y^b reverse-splatted (Eq. 22), 5 the same deeper when 4 found it
+  // hidden; then per splat s, Y_s into the backup domain (Eq. 20) and its resampling.
+  const uint first_splat_job = 6u;
   float from_r = 0.0;       // p-hat_prev(T^-1 Y*) |dT^-1/dY*|
   float c_r = 0.0;
   ShiftJob reverse;         // job 0's, which job 1 retries deeper
   ShiftResult reverse_result = shift_none(SHIFT_FAIL_ZERO);
+  ShiftJob reverse_b;       // job 4's, which job 5 retries deeper
+  ShiftResult reverse_b_result = shift_none(SHIFT_FAIL_ZERO);
   float from_b_star = 0.0;  // p-hat_prev(T_b^-1 Y*) |dT_b^-1/dY*|
   ShiftResult yb = shift_none(SHIFT_FAIL_ZERO);
   float j_b = 0.0;
@@ -189,27 +226,29 @@ void main() {
       PathSample y_splat = job == 0u ? canonical.y : shifted_sample(xb.y, yb);  // job 4: Y^b, the backup sample as shifted into this pixel
       if (run) sj = splat_prepare(true, y_splat, 0u);
       if (job == 0u) reverse = sj;
-    } else if (job == 1u) {
-      run = reverse.ok && splat_deeper(reverse, reverse_result);
+      else reverse_b = sj;
+    } else if (job == 1u || job == 5u) {
+      ShiftJob deeper = job == 1u ? reverse : reverse_b;  // one splat_deeper call site
+      run = deeper.ok && splat_deeper(deeper, job == 1u ? reverse_result : reverse_b_result);
       if (run) {
-        sj = reverse;
+        sj = deeper;
         atomicAdd(b_counters[k_layer_stepping ? COUNTER_SPLAT_STEP_RAYS : COUNTER_SPLAT_RANGE_RAYS], 1u);  // the query after the layer test
       }
-    } else if (job == 2u) {
-      run = backup_domain && reservoir_valid(canonical);
-      if (run) sj = gather_prepare(true, vec2(bp.backup), canonical.y);
     } else if (job == 3u) {
       run = backup_domain && reservoir_valid(xb);
       if (run) sj = gather_prepare(false, vec2(pixel), xb.y);
     } else {
-      run = backup_domain;
-      if (run) sj = gather_prepare(true, vec2(bp.backup), y_s.y);
+      // Job 2 and the splats: into the backup domain (for the deep backup restricted to its range).
+      run = backup_domain && (job != 2u || reservoir_valid(canonical));
+      if (run) sj = gather_prepare_deep(true, vec2(bp.backup), job == 2u ? canonical.y : y_s.y, bd.layer, bd.t_min, bd.t_max);
     }
     ShiftResult r;
     r.reason = SHIFT_FAIL_ZERO;
     float jac = 0.0;
     if (run) {
-      r = run_shift(sj, moved);
+      uint hidden_rays = 0u;
+      r = gather_hidden(sj, hidden_rays) ? run_shift(sj, moved) : shift_none(SHIFT_FAIL_PRIMARY);
+      r.rays += hidden_rays;
       jac = shift_finish(sj, r);
       count_shift(r);
     }
@@ -225,9 +264,13 @@ void main() {
     } else if (job == 3u) {
       yb = r;
       j_b = jac;
-    } else if (job == 4u) {
-      from_r_b = from;
-      if (jac > 0.0) c_r_b = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel), 0u, cap);
+    } else if (job == 4u || job == 5u) {
+      if (job == 4u) reverse_b_result = r;
+      if (jac > 0.0) {
+        from_r_b = from;
+        c_r_b = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel), sj.layer, cap);
+      }
+      if (job == 4u) continue;
       // The canonical sample (RS-main Eq. 12-13; RS-supp Eq. 21) and the backup (RS-supp Eq. 22).
       float m_star = mis_balance_terms(c_star * canonical.p_hat, c_b * from_b_star, c_r * from_r);
       gris_stream_path(st, m_star * canonical.p_hat * canonical.ucw, canonical.p_hat, f_canonical, c_star, 0u, rng_next_float(rng));
@@ -252,9 +295,12 @@ void main() {
     }
   }
   // ML Table 1's coverage: a disoccluded front-layer pixel (domain_build.comp) that a splat from a
-  // previous deep domain reached.
-  if (multilayer() && layer == 0u && from_deep && (b_domains[index].flags & DOMAIN_DISOCCLUDED) != 0u) {
+  // previous deep domain reached, or the deep backup's sample.
+  bool deep_backup_in = backup_domain && bd.layer != 0u && j_b > 0.0;
+  if (multilayer() && layer == 0u && (from_deep || deep_backup_in) && (b_domains[index].flags & DOMAIN_DISOCCLUDED) != 0u) {
     atomicAdd(b_counters[COUNTER_DISOCCLUDED_COVERED], 1u);
+    if (from_deep) atomicAdd(b_counters[COUNTER_DISOCCLUDED_SPLATTED], 1u);
+    if (deep_backup_in) atomicAdd(b_counters[COUNTER_DISOCCLUDED_BACKUP], 1u);
     atomicOr(b_domains[index].flags, DOMAIN_COVERED);  // the domain map's "covered" (render/restir/domain_map.cpp)
   }
   if (st.selected != 0u && st.selected != GRIS_NONE) atomicAdd(b_counters[COUNTER_TEMPORAL_SELECTED], 1u);

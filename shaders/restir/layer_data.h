@@ -24,12 +24,14 @@ CONST_DEF uint DOMAIN_PROPAGATES = 4u; // activated by propagation (or the front
                                        // activates next frame's domains (ML 4.3); hole-filled ones do not
 CONST_DEF uint DOMAIN_FILLED = 8u;     // active by hole filling only (ML 4.3: sampling only)
 CONST_DEF uint DOMAIN_DISOCCLUDED = 16u;  // front layer: its representative hit was hidden from the previous camera
-CONST_DEF uint DOMAIN_COVERED = 32u;      // front layer, disoccluded: a splat from a previous deep domain landed (ML Table 1)
+CONST_DEF uint DOMAIN_COVERED = 32u;      // front layer, disoccluded: a splat from a previous deep domain landed, or the deep backup (ML Table 1)
 CONST_DEF uint DOMAIN_SILHOUETTE = 64u;   // front layer: a 4-neighbour's centre ray sees another surface (another instance,
                                           // nothing, or a depth more than SILHOUETTE_DEPTH_RATIO apart): an edge that
                                           // can uncover what lies behind the pixels near it
 CONST_DEF uint DOMAIN_DORMANT = 128u;     // deep, activated by propagation but farther than silhouette_band from every
                                           // silhouette: its representative hit propagates, it samples nothing (not active)
+CONST_DEF uint DOMAIN_HELD = 256u;        // front layer, disoccluded: its representative hit, moved back, lies in the depth
+                                          // range of an active previous deep domain (the deep backup's domain)
 CONST_DEF float SILHOUETTE_DEPTH_RATIO = 0.05f;
 
 CONST_DEF uint OCCLUDER_NONE = 0xFFFFFFFFu;  // a mark no propagated hit set (GpuDomainMark)

@@ -23,6 +23,7 @@ CONST_DEF uint RESTIR_UNBIASED = 1u;  // temporal MIS with the reverse shift (Li
                                       // tutorial's confidence weights with heuristic validation
 CONST_DEF uint RESTIR_SPLAT_BACKUP = 2u;  // restir-splat-backup: also the backprojected backup sample (RS-main 4.2)
 CONST_DEF uint RESTIR_TEMPORAL_FILTER = 4u;  // gather temporal: q's previous centre surface must be like this pixel's
+CONST_DEF uint RESTIR_DEEP_BACKUP = 8u;  // restir-multilayer: a disoccluded pixel's backup is the previous deep domain that held it
 
 struct GpuRestirConstants {
   uint initial_candidates;  // N_init paths per pixel

@@ -168,6 +168,31 @@ ShiftJob gather_prepare(bool prev, vec2 pixel, PathSample y) {
   return job;
 }
 
+// The gather shift of y into the deep domain (pixel, layer) of the previous or current frame whose
+// depth range is [t_min, t_max] (restir-multilayer's deep backup, restir_splat_resample.comp): the
+// domain of ML Eq. 4, so the offset path's primary vertex is the first hit from L_i r within D_i,
+// and the camera ray must be blocked before L_i (gather_hidden).
+ShiftJob gather_prepare_deep(bool prev, vec2 pixel, PathSample y, uint layer, float t_min, float t_max) {
+  ShiftJob job = gather_prepare(prev, pixel, y);
+  job.layer = layer;
+  job.t_min = t_min;
+  job.t_max = t_max;
+  return job;
+}
+
+// Whether a gather job's camera ray is blocked before its deep domain's depth range (ML Eq. 4: the
+// primary vertex is hidden from x_0), as restir_initial.comp tests a deep domain's canonical camera
+// rays; true for every other job. One any-hit query.
+bool gather_hidden(ShiftJob job, INOUT(uint) rays) {
+  if (!job.ok || job.splat || job.layer == 0u) return true;
+  vec3 origin;
+  vec3 dir;
+  primary_ray(camera_at(job.prev, job.y.time), job.pixel, job.y.jitter, job.y.lens, origin, dir);
+  RayHit h;
+  rays++;
+  return trace_query_in(job.prev, origin, dir, job.t_min, true, h);
+}
+
 // After shift_path: a splat's primary ray must have found x_1's triangle again (visibility of y_1
 // from y_0, RS-main 4.1.1); the Jacobian of the whole shift. Fails the result where needed.
 float shift_finish(ShiftJob job, INOUT(ShiftResult) r) {
@@ -188,7 +213,10 @@ float shift_finish(ShiftJob job, INOUT(ShiftResult) r) {
 ShiftResult run_shift(ShiftJob job, bool suffix_changed) {
   if (!job.ok) return shift_none(job.reason);
   // A splat carries its camera sample; its primary ray must find x_1 again (within the layer's range).
+  // A gather into a deep domain restricts its primary ray to the domain's depth range (ML Eq. 4).
   DomainPrimary dp = job.splat ? domain_primary_splat(job.y.x1, job.t_min, job.t_max) : domain_primary_free();
+  dp.t_min = job.t_min;
+  dp.t_max = job.t_max;
   return shift_path(job.prev, job.pixel, dp, job.y, suffix_changed);
 }
 

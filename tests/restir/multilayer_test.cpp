@@ -6,7 +6,8 @@
 //   stripes lie inside the back plane's depth range, it matches the hidden part of each pixel;
 // - domain propagation (ML 4.3): while the front quad jumps between two places, the back plane's
 //   domains are active exactly where it is hidden and was visible the frame before, and the pixels
-//   it reappears in are covered by splats from those domains;
+//   it reappears in are covered by splats from those domains, and with the deep backup the held
+//   pixels no splat reached too;
 // - the silhouette band: hidden domains far from every silhouette are dormant and wake before
 //   they are uncovered (coverage as without the band, fewer active domains);
 // - numerics: depth ranges at t near 0 and at 1e5, grazing views, 8 layers of a stack of 12 planes,
@@ -265,6 +266,53 @@ TEST_F(MultilayerDomains, HiddenDomainsStayActiveAndCoverTheirDisocclusion) {
   }
 }
 
+// The deep backup (restir_splat_resample.comp; docs/ARCHITECTURE.md, "The deep backup") on the
+// jumping quad: a disoccluded pixel whose hit an active previous deep domain held takes that
+// domain's reservoir as its backup sample, so the held pixels a deep splat missed (those the quad's
+// edge crosses) get history too. Off, coverage is the splats' alone. Unbiasedness with it:
+// restir_unbiased_test.cpp (multilayer_two_planes, multilayer_carousel).
+TEST_F(MultilayerDomains, DeepBackupCoversTheHeldPixelsSplatsMissed) {
+  const uint32_t size = 32;
+  const scene::Scene s = two_planes(0.5f, 0.5f);
+  for (const bool deep_backup : {true, false}) {
+    render::RenderSettings rs = multilayer_settings(size, 7);
+    rs.restir.hole_fill_radius = 0;
+    rs.restir.deep_backup = deep_backup;
+    render::Renderer renderer(gpu_context(), s, rs);
+    uint64_t held = 0, covered = 0, splatted = 0, backup = 0, selected = 0;
+    for (uint32_t f = 0; f < 5; ++f) {
+      auto r = renderer.render(with_front_at(s, jump_offset(f)), f);
+      if (f < 2) continue;  // frame 1 has no previous deep domain
+      const auto& reuse = r.stats.reuse;
+      held += reuse.at("domains.disoccluded_held");
+      covered += reuse.at("domains.disoccluded_covered");
+      splatted += reuse.at("domains.disoccluded_splatted");
+      EXPECT_EQ(reuse.count("domains.disoccluded_backup"), deep_backup ? 1u : 0u) << "reported with the deep backup only";
+      EXPECT_EQ(reuse.count("splat.backup_selected"), deep_backup ? 1u : 0u);
+      if (deep_backup) {
+        backup += reuse.at("domains.disoccluded_backup");
+        selected += reuse.at("splat.backup_selected");
+      }
+    }
+    std::printf("deep_backup %s, frames 2..4: held %llu, covered %llu (by splats %llu, by the backup %llu), backup selected %llu\n",
+                deep_backup ? "on" : "off", (unsigned long long)held, (unsigned long long)covered, (unsigned long long)splatted,
+                (unsigned long long)backup, (unsigned long long)selected);
+    EXPECT_GT(held, 0u) << "the case must uncover pixels a previous deep domain held";
+    EXPECT_LT(splatted, held) << "the case must have held pixels no deep splat reached";
+    if (deep_backup) {
+      // A held pixel the quad's edge crossed may have a deep domain with an empty reservoir (its
+      // samples lie in the hidden part of the pixel: HiddenDomainsStayActiveAndCoverTheirDisocclusion).
+      EXPECT_GE(double(backup), 0.9 * double(held)) << "a held pixel takes its deep domain's reservoir";
+      EXPECT_LE(backup, held);
+      EXPECT_GE(covered, backup) << "covered: a splat or the backup";
+      EXPECT_GT(covered, splatted) << "the backup reaches held pixels no splat reached";
+      EXPECT_GT(selected, 0u);
+    } else {
+      EXPECT_EQ(covered, splatted);
+    }
+  }
+}
+
 // The silhouette band (domain_fill.comp): a quad 14 px wide slides right 1 px a frame over the back
 // plane. The back-plane pixels its leading edge hides propagate on while hidden; with band 2 the
 // ones farther than 2 px from every silhouette are dormant (tracked, not sampled), and they become
@@ -412,7 +460,7 @@ TEST_F(MultilayerDomains, DisocclusionBoostTakesThePixelsNoSplatReached) {
       if (rs.method == "restir-splat") {
         EXPECT_EQ(boosted, holes) << method << " frame " << f;
       } else {
-        const uint64_t uncovered = r.stats.reuse.at("domains.disoccluded") - r.stats.reuse.at("domains.disoccluded_covered");
+        const uint64_t uncovered = r.stats.reuse.at("domains.disoccluded") - r.stats.reuse.at("domains.disoccluded_splatted");
         EXPECT_LE(boosted, std::min(holes, uncovered)) << method << " frame " << f;
       }
       boosted_total += boosted;

@@ -13,7 +13,7 @@ namespace strata::render {
 struct DomainMap {
   static constexpr uint8_t k_active_mask = 0x0F;  // active domains of the pixel, front layer included (0..8)
   static constexpr uint8_t k_disoccluded = 0x10;  // the front layer's hit was hidden from the previous camera
-  static constexpr uint8_t k_covered = 0x20;      // ... and a splat from a previous deep domain landed in it
+  static constexpr uint8_t k_covered = 0x20;      // ... and a splat from a previous deep domain or the deep backup reached it
   uint32_t width = 0, height = 0, layers = 0;
   std::vector<uint8_t> pixels;  // width x height, top row first
 };

@@ -55,6 +55,8 @@ struct RestirState {
   bool layer_stepping() const { return multilayer() && settings.restir.layer_mode != "active"; }
   // The silhouette band (domain_fill.comp) in pixels: layer_mode active only (0: off).
   uint32_t silhouette_band() const { return multilayer() && !layer_stepping() ? settings.restir.silhouette_band : 0; }
+  // The deep backup (restir_splat_resample.comp): layer_mode active, with temporal reuse.
+  bool deep_backup() const { return multilayer() && !layer_stepping() && splat_sort() && settings.restir.deep_backup; }
 
   std::map<std::string, uint64_t> memory_bytes() const;
 };

@@ -142,7 +142,7 @@ class TemporalSplatStage : public Stage {
     s.reuse["splat.partitions"] = ran_ ? partitions_ : 0;  // K time partitions of this frame's shutter
     s.reuse["splat.offscreen"] = c[COUNTER_SPLATS_OFFSCREEN];
     s.reuse["splat.occluded"] = c[COUNTER_SPLATS_OCCLUDED];
-    if (state_.spec.backup) s.reuse["splat.backup_selected"] = c[COUNTER_SPLAT_BACKUP_SELECTED];
+    if (state_.spec.backup || state_.deep_backup()) s.reuse["splat.backup_selected"] = c[COUNTER_SPLAT_BACKUP_SELECTED];
     // Suffix replay rays per pass (of temporal.replay_rays): forward splats, and reverse splats with the backup.
     s.reuse["splat_project.replay_rays"] = c[COUNTER_RAYS_REPLAY];
     s.reuse["splat_resample.replay_rays"] = c[COUNTER_RAYS_REPLAY_RESAMPLE];
@@ -154,6 +154,9 @@ class TemporalSplatStage : public Stage {
       s.reuse["splat.range_rays"] = c[COUNTER_SPLAT_RANGE_RAYS];
       s.reuse["splat.step_rays"] = c[COUNTER_SPLAT_STEP_RAYS];
       s.reuse["domains.disoccluded_covered"] = c[COUNTER_DISOCCLUDED_COVERED];
+      // ... of them, by a splat from a previous deep domain, and by the deep backup (both may)
+      s.reuse["domains.disoccluded_splatted"] = c[COUNTER_DISOCCLUDED_SPLATTED];
+      if (state_.deep_backup()) s.reuse["domains.disoccluded_backup"] = c[COUNTER_DISOCCLUDED_BACKUP];
     }
   }
 
