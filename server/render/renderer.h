@@ -76,7 +76,7 @@ struct RestirOptions {
   // "Multi-layer ... Fifth part"): 39-44% of the deep domains, 97% of the coverage, the same
   // disoccluded error.
   uint32_t silhouette_band = 1;
-  // restir-multilayer, layer_mode active: the deep backup (docs/ARCHITECTURE.md, "The deep backup"):
+  // restir-multilayer, layer_mode active: the deep backup (docs/ARCHITECTURE.md, "Pixel layers": the deep backup):
   // a disoccluded pixel whose hit an active previous deep domain held takes that domain's reservoir
   // as its backup sample (RS-main 4.2 across layers), so that a splat that missed it is not lost.
   bool deep_backup = true;

@@ -91,7 +91,7 @@ Backprojection backproject_centre(GpuPrimaryHit centre, float cap) {
 
 // The backup domain b of this domain (RS-main 4.2), in the previous frame: restir-splat-backup's is
 // the front layer of the previous pixel the centre backprojects into. restir-multilayer's deep backup
-// (RESTIR_DEEP_BACKUP; docs/ARCHITECTURE.md, "The deep backup") extends it to pixel layers: a
+// (RESTIR_DEEP_BACKUP; docs/ARCHITECTURE.md, "Pixel layers": the deep backup) extends it to pixel layers: a
 // disoccluded front pixel whose centre hit an active previous deep domain held (DOMAIN_HELD, a
 // geometric flag of domain_build) takes that deep domain, the one whose depth range holds the
 // backprojected hit, as its backup; its gather shifts are restricted to the domain of ML Eq. 4.

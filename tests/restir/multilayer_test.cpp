@@ -266,7 +266,7 @@ TEST_F(MultilayerDomains, HiddenDomainsStayActiveAndCoverTheirDisocclusion) {
   }
 }
 
-// The deep backup (restir_splat_resample.comp; docs/ARCHITECTURE.md, "The deep backup") on the
+// The deep backup (restir_splat_resample.comp; docs/ARCHITECTURE.md, "Pixel layers": the deep backup) on the
 // jumping quad: a disoccluded pixel whose hit an active previous deep domain held takes that
 // domain's reservoir as its backup sample, so the held pixels a deep splat missed (those the quad's
 // edge crosses) get history too. Off, coverage is the splats' alone. Unbiasedness with it:
