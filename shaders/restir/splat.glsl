@@ -180,17 +180,19 @@ ShiftJob gather_prepare_deep(bool prev, vec2 pixel, PathSample y, uint layer, fl
   return job;
 }
 
-// Whether a gather job's camera ray is blocked before its deep domain's depth range (ML Eq. 4: the
-// primary vertex is hidden from x_0), as restir_initial.comp tests a deep domain's canonical camera
-// rays; true for every other job. One any-hit query.
+// Whether a gather job into a deep domain of the previous frame (the deep backup's) has its camera
+// ray blocked before the domain's depth range (ML Eq. 4: the primary vertex is hidden from x_0), as
+// restir_initial.comp tests a deep domain's canonical camera rays; true for every other job. One
+// any-hit query in the previous frame's TLAS only: lavapipe inlines a traversal per call site and
+// per TLAS, and this one needs no other.
 bool gather_hidden(ShiftJob job, INOUT(uint) rays) {
-  if (!job.ok || job.splat || job.layer == 0u) return true;
+  if (!job.ok || job.splat || job.layer == 0u || !job.prev) return true;
   vec3 origin;
   vec3 dir;
-  primary_ray(camera_at(job.prev, job.y.time), job.pixel, job.y.jitter, job.y.lens, origin, dir);
+  primary_ray(camera_at(true, job.y.time), job.pixel, job.y.jitter, job.y.lens, origin, dir);
   RayHit h;
   rays++;
-  return trace_query_in(job.prev, origin, dir, job.t_min, true, h);
+  return trace_query_in(true, origin, dir, job.t_min, true, h);
 }
 
 // After shift_path: a splat's primary ray must have found x_1's triangle again (visibility of y_1
