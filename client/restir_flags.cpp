@@ -34,6 +34,9 @@ void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
   cmd->add_option("--silhouette-band", r.silhouette_band,
                   "restir-multilayer: deep domains farther than this many pixels from a front-layer silhouette are dormant, "
                   "tracked but not sampled (0..32; 0: off; default 1)");
+  cmd->add_option("--reveal-lookahead", r.reveal_lookahead,
+                  "restir-multilayer: deep domains whose motion is known sample when predicted to be uncovered within this many "
+                  "frames, else they are dormant (0..16; 0: off; default 4)");
   cmd->add_option("--deep-backup", r.deep_backup,
                   "restir-multilayer: a disoccluded pixel takes the previous deep domain that held its hit as a backup sample "
                   "(RS-main 4.2 across layers; true | false; default true)");
@@ -78,6 +81,7 @@ std::string restir_flags_text(const RestirFlags& r) {
   if (r.layers) add("--layers", std::to_string(*r.layers));
   if (r.hole_fill_radius) add("--hole-fill-radius", std::to_string(*r.hole_fill_radius));
   if (r.silhouette_band) add("--silhouette-band", std::to_string(*r.silhouette_band));
+  if (r.reveal_lookahead) add("--reveal-lookahead", std::to_string(*r.reveal_lookahead));
   if (r.deep_backup) add("--deep-backup", *r.deep_backup ? "true" : "false");
   if (!r.layer_mode.empty()) add("--layer-mode", r.layer_mode);
   if (!r.lod_mapping.empty()) add("--lod-mapping", r.lod_mapping);
@@ -115,6 +119,7 @@ void set_restir_options(const RestirFlags& r, v1::RenderOptions& o) {
   if (r.layers) o.set_layers(*r.layers);
   if (r.hole_fill_radius) o.set_hole_fill_radius(*r.hole_fill_radius);
   if (r.silhouette_band) o.set_silhouette_band(*r.silhouette_band);
+  if (r.reveal_lookahead) o.set_reveal_lookahead(*r.reveal_lookahead);
   if (r.deep_backup) o.set_deep_backup(*r.deep_backup);
   if (r.layer_mode == "active") o.set_layer_mode(v1::LAYER_MODE_ACTIVE);
   else if (r.layer_mode == "uniform") o.set_layer_mode(v1::LAYER_MODE_UNIFORM);

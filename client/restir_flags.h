@@ -16,7 +16,7 @@ struct RestirFlags {
   std::optional<bool> lod_matching, deep_backup;
   std::optional<float> confidence_cap, still_confidence_cap, spatial_radius;
   std::optional<uint32_t> spatial_neighbors, initial_candidates, light_candidates, disocclusion_spatial_neighbors, disocclusion_initial_candidates, direct_strata,
-      albedo_strata, layers, hole_fill_radius, silhouette_band;
+      albedo_strata, layers, hole_fill_radius, silhouette_band, reveal_lookahead;
   bool no_temporal = false, no_spatial = false, biased = false, no_temporal_filter = false;
 };
 

@@ -132,6 +132,9 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_option("--silhouette-band", r.silhouette_band,
                   "restir-multilayer: deep domains farther than this many pixels from a front-layer silhouette are dormant (0..32; 0: off)")
       ->capture_default_str();
+  cmd->add_option("--reveal-lookahead", r.reveal_lookahead,
+                  "restir-multilayer: deep domains sample when predicted to be uncovered within this many frames, else dormant (0..16; 0: off)")
+      ->capture_default_str();
   cmd->add_option("--deep-backup", r.deep_backup,
                   "restir-multilayer: a disoccluded pixel takes the previous deep domain that held its hit as a backup sample (true | false)")
       ->capture_default_str();

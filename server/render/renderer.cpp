@@ -87,6 +87,8 @@ void RestirOptions::validate() const {
           "restir.hole_fill_radius = " + std::to_string(hole_fill_radius) + " is outside " + range(0u, RESTIR_MAX_HOLE_FILL_RADIUS));
   require(silhouette_band <= RESTIR_MAX_SILHOUETTE_BAND,
           "restir.silhouette_band = " + std::to_string(silhouette_band) + " is outside " + range(0u, RESTIR_MAX_SILHOUETTE_BAND) + " (0 = off)");
+  require(reveal_lookahead <= RESTIR_MAX_REVEAL_LOOKAHEAD,
+          "restir.reveal_lookahead = " + std::to_string(reveal_lookahead) + " is outside " + range(0u, RESTIR_MAX_REVEAL_LOOKAHEAD) + " (0 = off)");
   require(layer_mode == "active" || layer_mode == "uniform" || layer_mode == "no-depth-ranges",
           "restir.layer_mode = '" + layer_mode + "' is not one of: active, uniform, no-depth-ranges");
   require(disocclusion_initial_candidates <= RESTIR_MAX_INITIAL_CANDIDATES,

@@ -76,6 +76,12 @@ struct RestirOptions {
   // "Multi-layer ... Fifth part"): 39-44% of the deep domains, 97% of the coverage, the same
   // disoccluded error.
   uint32_t silhouette_band = 1;
+  // restir-multilayer: a deep domain whose hit and front hit both moved back into the previous image
+  // samples only when, keeping that motion, the front layer moves off it within this many frames;
+  // otherwise it is dormant (docs/ARCHITECTURE.md, "Pixel layers": the reveal prediction; the
+  // silhouette band decides for the others). 0: off. 4 by measurement on carousel (docs/BENCHMARKS.md,
+  // "Multi-layer ... Ninth part").
+  uint32_t reveal_lookahead = 4;
   // restir-multilayer, layer_mode active: the deep backup (docs/ARCHITECTURE.md, "Pixel layers": the deep backup):
   // a disoccluded pixel whose hit an active previous deep domain held takes that domain's reservoir
   // as its backup sample (RS-main 4.2 across layers), so that a splat that missed it is not lost.

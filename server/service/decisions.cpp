@@ -241,8 +241,22 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                            ? "only layer_mode active has dormant domains (the validation variants are the ML paper's)"
                        : eff.silhouette_band() == 0
                            ? "off: every activated deep domain samples (ML 4.3)"
+                       : eff.reveal_lookahead() > 0
+                           ? "deep domains without a reveal prediction (no motion known) farther than this from a silhouette of the "
+                             "front layer are tracked (their representative hits propagate) but sample nothing until an edge comes this "
+                             "near (not in the ML paper; docs/BENCHMARKS.md)"
                            : "deep domains farther than this from a silhouette of the front layer are tracked (their representative hits "
                              "propagate) but sample nothing until an edge comes this near (not in the ML paper; docs/BENCHMARKS.md)"));
+    out.push_back(make("reveal_lookahead", asked(req.has_reveal_lookahead(), u(req.reveal_lookahead())), u(eff.reveal_lookahead()),
+                       method.layers && eff.layer_mode() == v1::LAYER_MODE_ACTIVE && eff.reveal_lookahead() > 0,
+                       !method.layers ? not_layers
+                       : eff.layer_mode() != v1::LAYER_MODE_ACTIVE
+                           ? "only layer_mode active has dormant domains (the validation variants are the ML paper's)"
+                       : eff.reveal_lookahead() == 0
+                           ? "off: the silhouette band alone decides which activated deep domains sample"
+                           : "a deep domain samples when, moving against the front layer as over the last frame, it is uncovered "
+                             "within this many frames; otherwise it is tracked but samples nothing (not in the ML paper; "
+                             "docs/BENCHMARKS.md: a quarter of the silhouette band's deep domains at its coverage and error on carousel)"));
     const bool deep_backup_used = method.layers && eff.layer_mode() == v1::LAYER_MODE_ACTIVE && temporal && eff.deep_backup();
     out.push_back(make("deep_backup", asked(req.has_deep_backup(), req.deep_backup() ? "true" : "false"),
                        eff.deep_backup() ? "true" : "false", deep_backup_used,

@@ -50,6 +50,7 @@ void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, cons
   check_range(o.has_layers(), o.layers(), 0, gpu::LAYERS_MAX, p + "layers", "0 = auto");
   check_range(o.has_hole_fill_radius(), o.hole_fill_radius(), 0, gpu::RESTIR_MAX_HOLE_FILL_RADIUS, p + "hole_fill_radius", "0 = off");
   check_range(o.has_silhouette_band(), o.silhouette_band(), 0, gpu::RESTIR_MAX_SILHOUETTE_BAND, p + "silhouette_band", "0 = off");
+  check_range(o.has_reveal_lookahead(), o.reveal_lookahead(), 0, gpu::RESTIR_MAX_REVEAL_LOOKAHEAD, p + "reveal_lookahead", "0 = off");
   check_enum(o.has_lod_vertices(), o.lod_vertices(), &v1::LodVertices_IsValid, p + "lod_vertices",
              "LOD_VERTICES_BOTH, LOD_VERTICES_PRIMARY, LOD_VERTICES_RECONNECTION");
   check_enum(o.has_layer_mode(), o.layer_mode(), &v1::LayerMode_IsValid, p + "layer_mode",
@@ -116,6 +117,7 @@ render::RestirOptions restir_options(const v1::RenderOptions& e) {
   r.layers = e.layers();
   r.hole_fill_radius = e.hole_fill_radius();
   r.silhouette_band = e.silhouette_band();
+  r.reveal_lookahead = e.reveal_lookahead();
   r.deep_backup = e.deep_backup();
   r.layer_mode = layer_mode_name(e.layer_mode());
   r.lod_mapping = lod_mapping_name(e.lod_mapping());
@@ -161,6 +163,7 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const render
   o.set_layers(restir.layers);
   o.set_hole_fill_radius(restir.hole_fill_radius);
   o.set_silhouette_band(restir.silhouette_band);
+  o.set_reveal_lookahead(restir.reveal_lookahead);
   o.set_deep_backup(restir.deep_backup);
   o.set_layer_mode(v1::LAYER_MODE_ACTIVE);
   o.set_lod_matching(restir.lod_matching);

@@ -20,8 +20,13 @@
 // With silhouette_band > 0, the front layer's silhouettes are flagged (DOMAIN_SILHOUETTE: a
 // 4-neighbour's centre ray sees another instance, nothing, or a depth more than
 // SILHOUETTE_DEPTH_RATIO apart), for domain_fill's silhouette band.
-// A census of every fourth pixel in each direction walks all k layers, so that the frame reports how
-// many deep domains a uniform k-layer scheme would keep (ML Table 1) without walking every pixel.
+// With reveal_lookahead > 0, a deep domain whose hit and front hit both moved back into the previous
+// image is predicted (DOMAIN_PREDICTED), and flagged DOMAIN_REVEALING when, both keeping the motion
+// of the last frame, the front layer moves off it within reveal_lookahead frames: domain_fill lets
+// only those sample (ours, not the ML paper's; docs/ARCHITECTURE.md, "Pixel layers").
+// A census of about 1,024 pixels (every eighth in each direction at 256 x 256; the grid's offset
+// moves each frame) walks all k layers, so that the frame reports how many deep domains a uniform
+// k-layer scheme would keep (ML Table 1) without walking every pixel.
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
 
@@ -42,7 +47,9 @@ layout(set = 0, binding = BINDING_PRIMARY_PREV, std430) readonly buffer PrimaryP
 #include "restir/projection.glsl"
 #include "restir/seen_in_pixel.glsl"
 
-const uint CENSUS_STRIDE = 4u;  // the uniform census: every 4th pixel in x and y
+// The uniform census: every s-th pixel in x and y, s such that about 1,024 pixels walk (8 at
+// 256 x 256, every pixel up to 32 x 32), from an offset that moves each frame through all s * s.
+uint census_stride() { return clamp(uint(sqrt(float(u_frame.width * u_frame.height) / 1024.0)), 1u, 8u); }
 
 // Whether the front layer's hit was hidden from the previous camera behind another surface (or its
 // object switched LoD level): one closest-hit query in the previous frame. A hit outside the
@@ -124,6 +131,40 @@ uint deepest_needed(uvec2 pixel) {
   return 0u;
 }
 
+// The reveal prediction (reveal_lookahead > 0; ours, not the ML paper's): where a hit of this
+// frame's pixel-centre ray lay on the previous frame's image, its surface moved back by the resolver.
+bool previous_screen_position(GpuPrimaryHit e, out vec2 xy) {
+  xy = vec2(0.0);
+  if ((u_frame.history_flags & HISTORY_VALID) == 0u) return false;
+  ResolvedSurface before = resolve_surface(true, primary_surface(e));
+  if (before.reason != RESOLVE_OK) return false;
+  uvec2 q;
+  vec2 sub;
+  if (!project(u_frame.prev_camera, u_frame.prev_width, u_frame.prev_height, before.hit.position, vec3(0.0), q, sub)) return false;
+  xy = vec2(q) + sub;
+  return true;
+}
+
+const uint REVEAL_STEPS_MAX = 32u;  // front-layer pixels read along one prediction
+
+// Whether a deep hit at camera distance t, which moves by `relative` pixels a frame against the
+// front layer of its pixel, comes out from behind it within reveal_lookahead frames: after s frames
+// it lies under what is now at pixel + s * relative, and it is uncovered when the front layer there
+// is missing or no nearer than it (SILHOUETTE_DEPTH_RATIO, as the silhouettes' test). The path is
+// read in steps of at most one pixel (REVEAL_STEPS_MAX at most); one that leaves the image counts as
+// revealing (what lies beyond is unknown).
+bool revealing(uvec2 pixel, vec2 relative, float t) {
+  float frames = float(u_restir.reveal_lookahead);
+  uint steps = min(uint(ceil(length(relative) * frames)), REVEAL_STEPS_MAX);
+  for (uint j = 1u; j <= steps; ++j) {
+    ivec2 q = ivec2(floor(vec2(pixel) + 0.5 + relative * (frames * float(j) / float(steps))));
+    if (!in_image(q)) return true;
+    GpuPrimaryHit f = b_primary[domain_of(uvec2(q), 0u)];
+    if ((f.flags & PRIMARY_HIT) == 0u || f.t > t * (1.0 - SILHOUETTE_DEPTH_RATIO)) return true;
+  }
+  return false;
+}
+
 GpuPrimaryHit entry_of(RayHit h, float t, SurfaceHit s) {
   GpuPrimaryHit p;
   p.t = t;
@@ -147,12 +188,13 @@ void main() {
   if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
   uint k = u_restir.layers;
   bool uniform_mode = u_restir.layer_mode == LAYER_MODE_UNIFORM;
-  bool census = uniform_mode || (pixel.x % CENSUS_STRIDE == 0u && pixel.y % CENSUS_STRIDE == 0u);
+  uint stride = census_stride();
+  uvec2 census_offset = uvec2(u_frame.frame_index % stride, (u_frame.frame_index / stride) % stride);
+  bool census = uniform_mode || all(equal(pixel % stride, census_offset));
   GpuPrimaryHit front = b_primary[domain_of(pixel, 0u)];
   bool front_hit = (front.flags & PRIMARY_HIT) != 0u;
-  uint needed = front_hit ? (census ? k - 1u : deepest_needed(pixel)) : 0u;
-  if (uniform_mode) needed = front_hit ? k - 1u : 0u;
-  else if (census && front_hit) needed = max(k - 1u, deepest_needed(pixel));
+  uint own = front_hit && !uniform_mode ? deepest_needed(pixel) : 0u;  // the deepest layer this pixel's domains need
+  uint needed = front_hit && (uniform_mode || census) ? k - 1u : own;
 
   float t_of[LAYERS_MAX];
   uint occluder_of[LAYERS_MAX];
@@ -187,8 +229,15 @@ void main() {
   if (front_disoccluded) atomicAdd(b_counters[COUNTER_DISOCCLUDED], 1u);
   if (held) atomicAdd(b_counters[COUNTER_DISOCCLUDED_HELD], 1u);
   atomicAdd(b_counters[COUNTER_RAYS_DOMAIN_INIT], rays);
-  if (census && found > 1u) atomicAdd(b_counters[COUNTER_DOMAINS_UNIFORM], (found - 1u) * (uniform_mode ? 1u : CENSUS_STRIDE * CENSUS_STRIDE));
+  if (census && found > 1u) atomicAdd(b_counters[COUNTER_DOMAINS_UNIFORM], (found - 1u) * (uniform_mode ? 1u : stride * stride));
+  // A census pixel walks deeper than its domains need: the layers beyond are counted only, so that
+  // its domains (hits, ranges, activation) are what any other pixel's would be.
+  if (!uniform_mode) found = min(found, own + 1u);
 
+  // The reveal prediction: every hit found lies on the pixel-centre ray, so the motion of deep hit i
+  // against the front hit over the last frame is the difference of their previous positions.
+  vec2 front_before;
+  bool predict = u_restir.reveal_lookahead > 0u && !uniform_mode && found > 1u && previous_screen_position(front, front_before);
   // Depth ranges (ML Sec. 5): [(1-e)t, (1+e)t], overlapping neighbours clamped to their midpoint.
   float e = u_restir.depth_range_epsilon;
   float lo[LAYERS_MAX];
@@ -218,6 +267,9 @@ void main() {
         if (i == 0u && front_disoccluded) r.flags |= DOMAIN_DISOCCLUDED | (held ? DOMAIN_HELD : 0u);
         if (i == 0u && u_restir.silhouette_band > 0u && silhouette(pixel, front)) r.flags |= DOMAIN_SILHOUETTE;
       } else {
+        vec2 before;
+        if (predict && previous_screen_position(b_primary[d], before))
+          r.flags |= DOMAIN_PREDICTED | (revealing(pixel, front_before - before, t_of[i]) ? DOMAIN_REVEALING : 0u);
         GpuDomainMark m = b_marks[d];
         if (m.occluder_min != OCCLUDER_NONE) {
           // ML Sec. 5: activated only when the propagated hit's occluder is this hit's occluder.

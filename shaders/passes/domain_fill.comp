@@ -10,6 +10,10 @@
 //     dormant instead, its representative hit still propagates (DOMAIN_PROPAGATES, the list's other
 //     end for domain_propagate) but it samples nothing, so it costs no path, splat or resampling.
 //     A hole-filled one there is simply inactive. The test reads geometry only, as activation does.
+//   - The reveal prediction (reveal_lookahead > 0; ours): a deep domain whose motion domain_build
+//     predicted samples only when flagged DOMAIN_REVEALING (the front layer moves off it within
+//     reveal_lookahead frames); otherwise it is dormant (or, hole-filled, inactive) as above. The
+//     silhouette band then decides only for the domains without a prediction.
 //   - Every active deep domain is appended to the dense list that the initial and resampling passes
 //     dispatch indirectly, one thread per domain (ML Sec. 5's compaction); the list dispatch's
 //     workgroup count grows with it.
@@ -77,9 +81,17 @@ void main() {
       flags |= DOMAIN_ACTIVE | DOMAIN_FILLED;
       b_domains[d].flags = flags;
     }
-    if ((flags & DOMAIN_ACTIVE) != 0u && u_restir.silhouette_band > 0u) {
-      if (near < 0) near = flag_within(pixel, 0u, u_restir.silhouette_band, DOMAIN_SILHOUETTE) ? 1 : 0;
-      if (near == 0) {
+    if ((flags & DOMAIN_ACTIVE) != 0u && (u_restir.silhouette_band > 0u || u_restir.reveal_lookahead > 0u)) {
+      bool samples;
+      if ((flags & DOMAIN_PREDICTED) != 0u) {
+        samples = (flags & DOMAIN_REVEALING) != 0u;
+      } else if (u_restir.silhouette_band == 0u) {
+        samples = true;
+      } else {
+        if (near < 0) near = flag_within(pixel, 0u, u_restir.silhouette_band, DOMAIN_SILHOUETTE) ? 1 : 0;
+        samples = near == 1;
+      }
+      if (!samples) {
         flags &= ~(DOMAIN_ACTIVE | DOMAIN_FILLED);
         if ((flags & DOMAIN_PROPAGATES) != 0u) {
           flags |= DOMAIN_DORMANT;

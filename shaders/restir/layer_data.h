@@ -32,6 +32,10 @@ CONST_DEF uint DOMAIN_DORMANT = 128u;     // deep, activated by propagation but 
                                           // silhouette: its representative hit propagates, it samples nothing (not active)
 CONST_DEF uint DOMAIN_HELD = 256u;        // front layer, disoccluded: its representative hit, moved back, lies in the depth
                                           // range of an active previous deep domain (the deep backup's domain)
+CONST_DEF uint DOMAIN_PREDICTED = 512u;   // deep, reveal_lookahead > 0: its hit's and the front hit's motion over the last
+                                          // frame are known (both moved back into the previous image)
+CONST_DEF uint DOMAIN_REVEALING = 1024u;  // deep, predicted: the front layer moves off it within reveal_lookahead frames
+                                          // if both keep that motion (domain_build's reveal prediction)
 CONST_DEF float SILHOUETTE_DEPTH_RATIO = 0.05f;
 
 CONST_DEF uint OCCLUDER_NONE = 0xFFFFFFFFu;  // a mark no propagated hit set (GpuDomainMark)

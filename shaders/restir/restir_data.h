@@ -48,7 +48,7 @@ struct GpuRestirConstants {
   uint view_layer;          // restir-multilayer: 0 shades the image; i >= 1 the estimates of layer i's active domains (tests, debugging)
   uint disocclusion_initial_candidates;  // splat methods: candidates of front-layer pixels no splat reached (restir-multilayer: disoccluded ones); 0: none (RestirOptions::disocclusion_candidates)
   uint silhouette_band;     // restir-multilayer: deep domains farther than this many pixels from a front-layer silhouette are dormant (0: off)
-  uint pad3;
+  uint reveal_lookahead;    // restir-multilayer: a deep domain whose motion is known samples when predicted to be uncovered within this many frames, else dormant (0: off)
   uint pad4;
 };
 

@@ -25,6 +25,7 @@ CONST_DEF uint RESTIR_MAX_HOLE_FILL_RADIUS = 8u;
 // restir-multilayer: the silhouette band (domain_fill.comp reads up to (2r+1)^2 front-layer flags
 // per pixel with an active deep domain).
 CONST_DEF uint RESTIR_MAX_SILHOUETTE_BAND = 32u;
+CONST_DEF uint RESTIR_MAX_REVEAL_LOOKAHEAD = 16u;  // frames
 
 STRATA_NAMESPACE_END
 #endif

@@ -73,8 +73,10 @@ render::RenderSettings multilayer_settings(uint32_t size, uint32_t seed) {
   rs.seed = seed;
   rs.restir.layers = 2;
   // The ML paper's scheme: every activated deep domain samples (the cases below count them, and some
-  // hide the whole view, where the band would leave every one dormant); the band has its own case.
+  // hide the whole view, where the band would leave every one dormant); the band and the reveal
+  // prediction have their own case.
   rs.restir.silhouette_band = 0;
+  rs.restir.reveal_lookahead = 0;
   return rs;
 }
 
@@ -313,13 +315,16 @@ TEST_F(MultilayerDomains, DeepBackupCoversTheHeldPixelsSplatsMissed) {
   }
 }
 
-// The silhouette band (domain_fill.comp): a quad 14 px wide slides right 1 px a frame over the back
-// plane. The back-plane pixels its leading edge hides propagate on while hidden; with band 2 the
-// ones farther than 2 px from every silhouette are dormant (tracked, not sampled), and they become
-// active again before the trailing edge uncovers them. So the band leaves what is tracked and what
-// is covered as they are without it, with fewer active domains. (Propagation reads geometry only:
-// tracked = active + dormant is exact.)
-TEST_F(MultilayerDomains, SilhouetteBandKeepsCoverageWithFewerActiveDomains) {
+// The silhouette band and the reveal prediction (domain_fill.comp): a quad 14 px wide slides right
+// 1 px a frame over the back plane. The back-plane pixels its leading edge hides propagate on while
+// hidden; with band 2 the ones farther than 2 px from every silhouette are dormant (tracked, not
+// sampled), and they become active again before the trailing edge uncovers them. The reveal
+// prediction (lookahead 3, no band) keeps active only the ones the trailing edge uncovers within 3
+// frames: not those at the leading edge or under the quad's top and bottom edges, which the band
+// keeps. Both leave what is tracked and what is covered as they are without them, with fewer active
+// domains, the prediction fewer than the band. (Propagation reads geometry only: tracked = active +
+// dormant is exact.)
+TEST_F(MultilayerDomains, DormancyKeepsCoverageWithFewerActiveDomains) {
   const uint32_t size = 32, frames = 20, uncovering = 15;  // from frame 15 the trailing edge uncovers pixels seen before
   const float h = 0.4f;
   const scene::Scene s = two_planes(h, 0.5f);
@@ -327,21 +332,23 @@ TEST_F(MultilayerDomains, SilhouetteBandKeepsCoverageWithFewerActiveDomains) {
   struct Totals {
     uint64_t active = 0, dormant = 0, disoccluded = 0, covered = 0;
   };
-  auto run = [&](uint32_t band) {
+  auto run = [&](uint32_t band, uint32_t lookahead) {
     render::RenderSettings rs = multilayer_settings(size, 11);
     rs.restir.hole_fill_radius = 0;
     rs.restir.silhouette_band = band;
+    rs.restir.reveal_lookahead = lookahead;
+    const bool dormancy = band > 0 || lookahead > 0;
     render::Renderer renderer(gpu_context(), s, rs);
     Totals t;
     for (uint32_t f = 0; f < frames; ++f) {
       auto r = renderer.render(with_front_at(s, offset(f)), f);
-      for (float v : r.image.rgba) EXPECT_TRUE(std::isfinite(v)) << "band " << band << " frame " << f;
+      for (float v : r.image.rgba) EXPECT_TRUE(std::isfinite(v)) << "band " << band << " lookahead " << lookahead << " frame " << f;
       const auto& reuse = r.stats.reuse;
-      const uint64_t dormant = band > 0 ? reuse.at("domains.dormant") : 0;
-      std::printf("band %u frame %u: active deep %llu, dormant %llu, disoccluded %llu, covered %llu\n", band, f,
+      const uint64_t dormant = dormancy ? reuse.at("domains.dormant") : 0;
+      std::printf("band %u lookahead %u frame %u: active deep %llu, dormant %llu, disoccluded %llu, covered %llu\n", band, lookahead, f,
                   (unsigned long long)reuse.at("domains.active_layer_1"), (unsigned long long)dormant,
                   (unsigned long long)reuse.at("domains.disoccluded"), (unsigned long long)reuse.at("domains.disoccluded_covered"));
-      EXPECT_EQ(reuse.count("domains.dormant"), band > 0 ? 1u : 0u);
+      EXPECT_EQ(reuse.count("domains.dormant"), dormancy ? 1u : 0u);
       t.active += reuse.at("domains.active_layer_1");
       t.dormant += dormant;
       if (f < uncovering) continue;
@@ -350,13 +357,16 @@ TEST_F(MultilayerDomains, SilhouetteBandKeepsCoverageWithFewerActiveDomains) {
     }
     return t;
   };
-  const Totals off = run(0), band = run(2);
-  EXPECT_EQ(band.active + band.dormant, off.active) << "the band changes what samples, not what is tracked";
-  EXPECT_LT(double(band.active), 0.7 * double(off.active));
-  EXPECT_EQ(band.disoccluded, off.disoccluded);
+  const Totals off = run(0, 0), band = run(2, 0), predicted = run(0, 3);
   EXPECT_GE(double(off.covered), 0.6 * double(off.disoccluded)) << "the case must uncover pixels the camera saw";
-  // (A pixel the edge crosses may hold no sample of the hidden part: ML Eq. 4; hence not 100%.)
-  EXPECT_GE(double(band.covered), 0.85 * double(off.covered)) << "dormant domains wake before they are uncovered";
+  for (const auto& [name, t] : {std::pair{"band", band}, std::pair{"prediction", predicted}}) {
+    EXPECT_EQ(t.active + t.dormant, off.active) << name << " changes what samples, not what is tracked";
+    EXPECT_EQ(t.disoccluded, off.disoccluded) << name;
+    // (A pixel the edge crosses may hold no sample of the hidden part: ML Eq. 4; hence not 100%.)
+    EXPECT_GE(double(t.covered), 0.85 * double(off.covered)) << name << ": dormant domains wake before they are uncovered";
+  }
+  EXPECT_LT(double(band.active), 0.7 * double(off.active));
+  EXPECT_LT(double(predicted.active), 0.7 * double(band.active)) << "the prediction leaves the leading edge dormant";
 }
 
 // Every pixel finite and every active domain's estimate too (view_layer 1), on views that stress

@@ -282,6 +282,8 @@ TEST_F(RestirTest, BadRestirOptionsAreInvalidArgumentNamingTheField) {
       "options.hole_fill_radius = 9 is outside [0, 8] (0 = off)");
   add("silhouette_band 33", "restir-multilayer", [](auto& o) { o.set_silhouette_band(33); },
       "options.silhouette_band = 33 is outside [0, 32] (0 = off)");
+  add("reveal_lookahead 17", "restir-multilayer", [](auto& o) { o.set_reveal_lookahead(17); },
+      "options.reveal_lookahead = 17 is outside [0, 16] (0 = off)");
   add("direct_strata 0", "restir-gather", [](auto& o) { o.set_direct_strata(0); },
       "options.direct_strata = 0 is outside [1, 8]");
   add("direct_strata 9", "restir-splat", [](auto& o) { o.set_direct_strata(9); },

@@ -96,6 +96,7 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
   constants = gpu::Buffer(ctx, sizeof(gpu::GpuRestirConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "restir constants");
   gpu::GpuRestirConstants c = make_constants(settings, spec, layers, splat_sort());
   c.silhouette_band = silhouette_band();
+  c.reveal_lookahead = reveal_lookahead();
   if (deep_backup()) c.flags |= gpu::RESTIR_DEEP_BACKUP;
   constants.upload(&c, sizeof c);
   work = device_storage(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (work)");

@@ -55,6 +55,10 @@ struct RestirState {
   bool layer_stepping() const { return multilayer() && settings.restir.layer_mode != "active"; }
   // The silhouette band (domain_fill.comp) in pixels: layer_mode active only (0: off).
   uint32_t silhouette_band() const { return multilayer() && !layer_stepping() ? settings.restir.silhouette_band : 0; }
+  // The reveal prediction (domain_build.comp) in frames: layer_mode active only (0: off).
+  uint32_t reveal_lookahead() const { return multilayer() && !layer_stepping() ? settings.restir.reveal_lookahead : 0; }
+  // Deep domains can be dormant (tracked, not sampled): the silhouette band or the reveal prediction.
+  bool dormancy() const { return silhouette_band() > 0 || reveal_lookahead() > 0; }
   // The deep backup (restir_splat_resample.comp): layer_mode active, with temporal reuse.
   bool deep_backup() const { return multilayer() && !layer_stepping() && splat_sort() && settings.restir.deep_backup; }
 

@@ -42,7 +42,7 @@ class DomainInitStage : public Stage {
     };
     propagate_front_ = propagate(false, false);
     propagate_deep_ = propagate(true, false);
-    if (state.silhouette_band() > 0) propagate_dormant_ = propagate(true, true);
+    if (state.dormancy()) propagate_dormant_ = propagate(true, true);
     auto build = common();
     build.push_back(history_current(BINDING_PRIMARY, Access::read_write, state.visibility));
     build.push_back(history_current(BINDING_DOMAINS, Access::write, state.domain_ranges));
@@ -93,9 +93,7 @@ class DomainInitStage : public Stage {
             std::to_string(state_.layers) + " layers (" + state_.layers_reason + "); " + mode +
                 (o.layer_mode == "uniform" ? std::string()
                                            : "; hole filling radius " + std::to_string(o.hole_fill_radius) + " px" +
-                                                 (state_.silhouette_band() > 0
-                                                      ? "; deep domains beyond " + std::to_string(o.silhouette_band) + " px of a silhouette dormant"
-                                                      : "")) +
+                                                 dormancy_reason()) +
                 (propagated_ || o.layer_mode == "uniform" ? "" : "; no previous frame: front layer only")};
   }
 
@@ -112,7 +110,7 @@ class DomainInitStage : public Stage {
     s.reuse["domains.propagated"] = c[COUNTER_DOMAINS_PROPAGATED];
     s.reuse["domains.filled"] = c[COUNTER_DOMAINS_FILLED];
     // ... and propagated ones the silhouette band left dormant (tracked, not sampled, not in deep)
-    if (state_.silhouette_band() > 0) s.reuse["domains.dormant"] = c[COUNTER_DOMAINS_DORMANT];
+    if (state_.dormancy()) s.reuse["domains.dormant"] = c[COUNTER_DOMAINS_DORMANT];
     s.reuse["domains.occluder_refused"] = c[COUNTER_DOMAINS_OCCLUDER];
     s.reuse["domains.uniform_deep"] = c[COUNTER_DOMAINS_UNIFORM];
     s.reuse["domains.disoccluded"] = c[COUNTER_DISOCCLUDED];  // front-layer hits hidden from the previous camera
@@ -123,6 +121,19 @@ class DomainInitStage : public Stage {
   }
 
  private:
+  // Which deep domains sample (domain_fill.comp), as the decision says it.
+  std::string dormancy_reason() const {
+    const uint32_t lookahead = state_.reveal_lookahead(), band = state_.silhouette_band();
+    std::string r;
+    if (lookahead > 0)
+      r = "; deep domains sample when predicted to be uncovered within " + std::to_string(lookahead) + " frame" + (lookahead == 1 ? "" : "s") +
+          " (their motion against the front layer over the last frame), dormant otherwise";
+    if (band > 0)
+      r += std::string(lookahead > 0 ? "; without a prediction, those" : "; deep domains") + " beyond " + std::to_string(band) +
+           " px of a silhouette dormant";
+    return r;
+  }
+
   const RestirState& state_;
   std::unique_ptr<Pass> propagate_front_, propagate_deep_, propagate_dormant_, build_, fill_;
   bool propagated_ = false;
