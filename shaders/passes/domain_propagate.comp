@@ -6,7 +6,9 @@
 // layer i' there is counted along the ray from the camera to it (ML Fig. 2: one closest-hit query
 // per surface in front, front faces counted as restir/layer_data.h defines layers). A deep i' marks
 // domain (p', i') with the instance of T(c)'s immediate occluder, which domain_build compares with
-// the occluder of the domain's own representative hit (ML Sec. 5, footnote 2). A hit that lands on
+// the occluder of the domain's own representative hit (ML Sec. 5, footnote 2). A dormant domain
+// (SPEC_DORMANT_LIST) keeps its layer and occluder without the walk (it was not about to be
+// uncovered; the occluder check confirms it). A hit that lands on
 // the front layer needs no mark (front domains are always active); one that falls outside the
 // image, behind the camera, on a back face, or deeper than the k layers is dropped. One thread per
 // previous domain: the image dispatch the front layer's, the list dispatch (SPEC_DOMAIN_LIST) the
@@ -52,10 +54,20 @@ void main() {
   if (dot(moved.hit.geo_normal, dir) >= 0.0) return;  // a back face is in no layer
   // Layer 0 without a walk (most front-layer hits stay in front): front domains need no mark.
   if (seen_in_pixel(false, pixel, c.instance, dist)) return;
-  LayerWalk w = walk_to_point(false, origin, dir, c, dist);  // ML Fig. 2
-  atomicAdd(b_counters[COUNTER_RAYS_DOMAIN_INIT], w.rays);
-  uint found = w.layer;
-  uint occluder = w.occluder;
+  uint found;
+  uint occluder;
+  if (k_dormant_list) {
+    // A dormant domain is not about to be uncovered (the reveal prediction or the silhouette band):
+    // it keeps its layer and its immediate occluder instead of counting them along the ray, and
+    // domain_build's occluder check confirms the occluder at its new pixel (ML Sec. 5, footnote 2).
+    found = d / (u_frame.prev_width * u_frame.prev_height);
+    occluder = b_domains_prev[d].occluder;
+  } else {
+    LayerWalk w = walk_to_point(false, origin, dir, c, dist);  // ML Fig. 2
+    atomicAdd(b_counters[COUNTER_RAYS_DOMAIN_INIT], w.rays);
+    found = w.layer;
+    occluder = w.occluder;
+  }
   if (found == 0u || found >= u_restir.layers) return;
   uint target = domain_of(pixel, found);
   atomicMin(b_marks[target].occluder_min, occluder);
