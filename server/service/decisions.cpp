@@ -256,7 +256,7 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                            ? "off: the silhouette band alone decides which activated deep domains sample"
                            : "a deep domain samples when, moving against the front layer as over the last frame, it is uncovered "
                              "within this many frames; otherwise it is tracked but samples nothing (not in the ML paper; "
-                             "docs/BENCHMARKS.md: a quarter of the silhouette band's deep domains at its coverage and error on carousel)"));
+                             "docs/BENCHMARKS.md: a fifth of the silhouette band's deep domains at its coverage and error under carousel's pan)"));
     const bool deep_backup_used = method.layers && eff.layer_mode() == v1::LAYER_MODE_ACTIVE && temporal && eff.deep_backup();
     out.push_back(make("deep_backup", asked(req.has_deep_backup(), req.deep_backup() ? "true" : "false"),
                        eff.deep_backup() ? "true" : "false", deep_backup_used,
