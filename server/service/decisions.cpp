@@ -234,29 +234,25 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                        : eff.layer_mode() == v1::LAYER_MODE_UNIFORM
                            ? "layer_mode uniform keeps every layer active: nothing to fill"
                            : "deep domains within this radius of a propagated one sample too, without propagating (ML 4.3; the paper uses 3)"));
-    out.push_back(make("silhouette_band", asked(req.has_silhouette_band(), u(req.silhouette_band())), u(eff.silhouette_band()),
-                       method.layers && eff.layer_mode() == v1::LAYER_MODE_ACTIVE && eff.silhouette_band() > 0,
-                       !method.layers ? not_layers
-                       : eff.layer_mode() != v1::LAYER_MODE_ACTIVE
-                           ? "only layer_mode active has dormant domains (the validation variants are the ML paper's)"
-                       : eff.silhouette_band() == 0
-                           ? "off: every activated deep domain samples (ML 4.3)"
-                       : eff.reveal_lookahead() > 0
-                           ? "deep domains without a reveal prediction (no motion known) farther than this from a silhouette of the "
-                             "front layer are tracked (their representative hits propagate) but sample nothing until an edge comes this "
-                             "near (not in the ML paper; docs/BENCHMARKS.md)"
-                           : "deep domains farther than this from a silhouette of the front layer are tracked (their representative hits "
-                             "propagate) but sample nothing until an edge comes this near (not in the ML paper; docs/BENCHMARKS.md)"));
-    out.push_back(make("reveal_lookahead", asked(req.has_reveal_lookahead(), u(req.reveal_lookahead())), u(eff.reveal_lookahead()),
-                       method.layers && eff.layer_mode() == v1::LAYER_MODE_ACTIVE && eff.reveal_lookahead() > 0,
-                       !method.layers ? not_layers
-                       : eff.layer_mode() != v1::LAYER_MODE_ACTIVE
-                           ? "only layer_mode active has dormant domains (the validation variants are the ML paper's)"
-                       : eff.reveal_lookahead() == 0
-                           ? "off: the silhouette band alone decides which activated deep domains sample"
-                           : "a deep domain samples when, moving against the front layer as over the last frame, it is uncovered "
-                             "within this many frames; otherwise it is tracked but samples nothing (not in the ML paper; "
-                             "docs/BENCHMARKS.md: a fifth of the silhouette band's deep domains at its coverage and error under carousel's pan)"));
+    // The two rules that leave activated deep domains dormant (tracked, not sampled): layer_mode active only.
+    auto dormancy = [&](const std::string& name, bool has, uint32_t req_value, uint32_t eff_value, const std::string& off,
+                        const std::string& on) {
+      out.push_back(make(name, asked(has, u(req_value)), u(eff_value), method.layers && eff.layer_mode() == v1::LAYER_MODE_ACTIVE && eff_value > 0,
+                         !method.layers                                 ? not_layers
+                         : eff.layer_mode() != v1::LAYER_MODE_ACTIVE ? "only layer_mode active has dormant domains (the validation variants are the ML paper's)"
+                         : eff_value == 0                               ? off
+                                                                        : on));
+    };
+    dormancy("silhouette_band", req.has_silhouette_band(), req.silhouette_band(), eff.silhouette_band(),
+             "off: every activated deep domain samples (ML 4.3)",
+             std::string(eff.reveal_lookahead() > 0 ? "deep domains without a reveal prediction (no motion known) farther" : "deep domains farther") +
+                 " than this from a silhouette of the front layer are tracked (their representative hits propagate) but sample "
+                 "nothing until an edge comes this near (not in the ML paper; docs/BENCHMARKS.md)");
+    dormancy("reveal_lookahead", req.has_reveal_lookahead(), req.reveal_lookahead(), eff.reveal_lookahead(),
+             "off: the silhouette band alone decides which activated deep domains sample",
+             "a deep domain samples when, moving against the front layer as over the last frame, it is uncovered within this many "
+             "frames; otherwise it is tracked but samples nothing (not in the ML paper; docs/BENCHMARKS.md: a fifth of the silhouette "
+             "band's deep domains at its coverage and error under carousel's pan)");
     const bool deep_backup_used = method.layers && eff.layer_mode() == v1::LAYER_MODE_ACTIVE && temporal && eff.deep_backup();
     out.push_back(make("deep_backup", asked(req.has_deep_backup(), req.deep_backup() ? "true" : "false"),
                        eff.deep_backup() ? "true" : "false", deep_backup_used,
