@@ -28,8 +28,9 @@ CONST_DEF uint DOMAIN_COVERED = 32u;      // front layer, disoccluded: a splat f
 CONST_DEF uint DOMAIN_SILHOUETTE = 64u;   // front layer: a 4-neighbour's centre ray sees another surface (another instance,
                                           // nothing, or a depth more than SILHOUETTE_DEPTH_RATIO apart): an edge that
                                           // can uncover what lies behind the pixels near it
-CONST_DEF uint DOMAIN_DORMANT = 128u;     // deep, activated by propagation but farther than silhouette_band from every
-                                          // silhouette: its representative hit propagates, it samples nothing (not active)
+CONST_DEF uint DOMAIN_DORMANT = 128u;     // deep, activated by propagation but not predicted to be uncovered within
+                                          // reveal_lookahead frames (without a prediction: farther than silhouette_band from
+                                          // every silhouette): its representative hit propagates, it samples nothing (not active)
 CONST_DEF uint DOMAIN_HELD = 256u;        // front layer, disoccluded: its representative hit, moved back, lies in the depth
                                           // range of an active previous deep domain (the deep backup's domain)
 CONST_DEF uint DOMAIN_PREDICTED = 512u;   // deep, reveal_lookahead > 0: its hit's and the front hit's motion over the last

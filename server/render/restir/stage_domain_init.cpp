@@ -109,7 +109,8 @@ class DomainInitStage : public Stage {
     s.reuse["domains.deep"] = deep;
     s.reuse["domains.propagated"] = c[COUNTER_DOMAINS_PROPAGATED];
     s.reuse["domains.filled"] = c[COUNTER_DOMAINS_FILLED];
-    // ... and propagated ones the silhouette band left dormant (tracked, not sampled, not in deep)
+    // ... and propagated ones the reveal prediction or the silhouette band left dormant (tracked, not
+    // sampled, not in deep)
     if (state_.dormancy()) s.reuse["domains.dormant"] = c[COUNTER_DOMAINS_DORMANT];
     s.reuse["domains.occluder_refused"] = c[COUNTER_DOMAINS_OCCLUDER];
     s.reuse["domains.uniform_deep"] = c[COUNTER_DOMAINS_UNIFORM];
