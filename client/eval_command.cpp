@@ -313,7 +313,9 @@ Runner add_eval_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("eval", "error against run time: methods vs converged references; results.csv/json, report.html");
   add_connection_flags(cmd, a->conn);
   cmd->add_option("--scenes", a->scene_list, "scenes, comma-separated (the server's ListScenes)")->capture_default_str();
-  cmd->add_option("--methods", a->method_list, "methods, comma-separated (the server's status lists those available)")
+  cmd->add_option("--methods", a->method_list,
+                  "methods, comma-separated (the server's status lists those available); an entry may give ReSTIR flags of its "
+                  "own, NAME[:FLAG=VALUE]... (e.g. restir-splat:disocclusion-initial-candidates=8), over those given to all")
       ->capture_default_str();
   auto* frames = cmd->add_option("--frames", a->frames, "frames of each scene's default animation (not with --camera-path)")
                      ->capture_default_str();

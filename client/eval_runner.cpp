@@ -6,6 +6,7 @@
 
 #include "connection.h"
 #include "eval_frames.h"
+#include "eval_method.h"
 #include "eval_session.h"
 
 namespace strata::client {
@@ -64,9 +65,11 @@ void EvalClient::check(const EvalSettings& s) {
     if (!scenes_.count(scene))
       throw std::runtime_error("--scenes: '" + scene + "' is not a scene of " + address_ + "; its scenes: " + joined(names));
   const std::vector<std::string> methods(status_.methods().begin(), status_.methods().end());
-  for (const auto& m : s.methods)
+  for (const auto& entry : s.methods) {
+    const std::string m = parse_eval_method(entry, s.restir).method;  // and its flags: checked here, before any work
     if (std::find(methods.begin(), methods.end(), m) == methods.end())
       throw std::runtime_error("--methods: '" + m + "' is not available on " + address_ + "; available: " + joined(methods));
+  }
   for (size_t i = 0; i < s.methods.size(); ++i)
     for (size_t j = 0; j < i; ++j)
       if (s.methods[i] == s.methods[j]) throw std::runtime_error("--methods: '" + s.methods[i] + "' is given twice");

@@ -4,6 +4,7 @@
 
 #include "connection.h"
 #include "eval_frames.h"
+#include "eval_method.h"
 
 namespace strata::client {
 
@@ -14,12 +15,13 @@ EvalSession::EvalSession(v1::RenderService::Stub& stub, const v1::SceneSource& s
   *req.mutable_scene() = scene;
   req.mutable_resolution()->set_width(s.width);
   req.mutable_resolution()->set_height(s.height);
-  req.set_method(method);
+  const EvalMethod m = parse_eval_method(method, s.restir);  // NAME[:FLAG=VALUE]... (eval_method.h)
+  req.set_method(m.method);
   req.set_seed(s.seed);
   req.mutable_options()->set_spp(spp);
   if (s.max_depth) req.mutable_options()->set_max_depth(s.max_depth);
   if (s.splats_per_frame) req.mutable_options()->set_splats_per_frame(*s.splats_per_frame);
-  set_restir_options(s.restir, *req.mutable_options());
+  set_restir_options(m.restir, *req.mutable_options());
   req.add_encodings(v1::IMAGE_ENCODING_RAW_RGBA16F);
   {
     grpc::ClientContext ctx;

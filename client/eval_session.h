@@ -14,7 +14,8 @@ namespace strata::client {
 
 class EvalSession {
  public:
-  // Creates the session (method, spp and the eval's options) and opens its stream.
+  // Creates the session (method, a --methods entry with its own flags (eval_method.h), spp and the
+  // eval's options) and opens its stream.
   EvalSession(v1::RenderService::Stub& stub, const v1::SceneSource& scene, const std::string& scene_name,
               const std::string& method, uint32_t spp, const EvalSettings& s, std::chrono::milliseconds timeout);
   // Cancels an unfinished stream and deletes the session (errors are not reported here: finish()

@@ -59,8 +59,12 @@ uint census_stride() { return clamp(uint(sqrt(float(u_frame.width * u_frame.heig
 // The ray is skipped where the point was seen in the previous pixel it falls in (seen_in_pixel).
 // held: the point lay in the depth range of an active deep domain of the previous pixel it falls in
 // (ML Table 1 "Domain Effectiveness": the activation's coverage, before any splat has to land).
-bool disoccluded(GpuPrimaryHit front, inout uint rays, out bool held) {
+// moved_back, xy: the point lay on the previous image, at xy (previous_screen_position's answer for
+// the front hit, which the reveal prediction reuses).
+bool disoccluded(GpuPrimaryHit front, inout uint rays, out bool held, out bool moved_back, out vec2 xy) {
   held = false;
+  moved_back = false;
+  xy = vec2(0.0);
   if ((u_frame.history_flags & HISTORY_VALID) == 0u) return false;
   ResolvedSurface before = resolve_surface(true, primary_surface(front));
   if (before.reason != RESOLVE_OK) return true;
@@ -69,6 +73,8 @@ bool disoccluded(GpuPrimaryHit front, inout uint rays, out bool held) {
   uvec2 q;
   vec2 sub;
   if (!(dist > 0.0) || !project(u_frame.prev_camera, u_frame.prev_width, u_frame.prev_height, p, vec3(0.0), q, sub)) return false;
+  moved_back = true;
+  xy = vec2(q) + sub;
   if (seen_in_pixel(true, q, front.instance, dist)) return false;
   RayHit h;
   rays++;
@@ -225,7 +231,9 @@ void main() {
     }
   }
   bool held = false;
-  bool front_disoccluded = front_hit && disoccluded(front, rays, held);
+  bool front_moved_back = false;
+  vec2 front_before;
+  bool front_disoccluded = front_hit && disoccluded(front, rays, held, front_moved_back, front_before);
   if (front_disoccluded) atomicAdd(b_counters[COUNTER_DISOCCLUDED], 1u);
   if (held) atomicAdd(b_counters[COUNTER_DISOCCLUDED_HELD], 1u);
   atomicAdd(b_counters[COUNTER_RAYS_DOMAIN_INIT], rays);
@@ -236,8 +244,7 @@ void main() {
 
   // The reveal prediction: every hit found lies on the pixel-centre ray, so the motion of deep hit i
   // against the front hit over the last frame is the difference of their previous positions.
-  vec2 front_before;
-  bool predict = u_restir.reveal_lookahead > 0u && !uniform_mode && found > 1u && previous_screen_position(front, front_before);
+  bool predict = u_restir.reveal_lookahead > 0u && !uniform_mode && found > 1u && front_moved_back;
   // Depth ranges (ML Sec. 5): [(1-e)t, (1+e)t], overlapping neighbours clamped to their midpoint.
   float e = u_restir.depth_range_epsilon;
   float lo[LAYERS_MAX];

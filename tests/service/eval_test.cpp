@@ -301,5 +301,53 @@ TEST(EvalTest, ScoreFromPlaysTheWarmUpWithoutScoringIt) {
   EXPECT_FALSE(fs::exists(dir.path / "bad"));
 }
 
+
+// --methods NAME:FLAG=VALUE: an entry carries ReSTIR flags of its own over those given to all, so
+// variants of one method run (and are timed) side by side. The variant's frames equal those of the
+// method run with the same flags given to all (the errors are deterministic for the seed), and
+// differ from the entry without them; an entry with a flag that does not exist is refused before
+// any work.
+TEST(EvalTest, MethodEntriesCarryFlagsOfTheirOwn) {
+  TempDir dir;
+  Daemon daemon({"--reference-cache", (dir.path / "cache").string()});
+  auto both = eval_args(daemon.address(), dir.path / "both");
+  both[7] = "restir-gather,restir-gather:spatial-neighbors=1";
+  both.erase(std::find(both.begin(), both.end(), "--equal-time"));
+  for (const char* a : {"--spatial-neighbors", "4"}) both.push_back(a);
+  const auto result = run_process(both, 300s);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  auto one = eval_args(daemon.address(), dir.path / "one");
+  one[7] = "restir-gather";
+  one.erase(std::find(one.begin(), one.end(), "--equal-time"));
+  for (const char* a : {"--spatial-neighbors", "1"}) one.push_back(a);
+  ASSERT_EQ(run_process(one, 300s).exit_code, 0);
+
+  const auto errors_of = [](const nlohmann::json& d, const std::string& method) {
+    std::vector<nlohmann::json> out;
+    for (const auto& run : d["runs"])
+      if (run["method"] == method)
+        for (const auto& f : run["frames"]) out.push_back(f["whole"]);
+    return out;
+  };
+  const auto doc = nlohmann::json::parse(read_file(dir.path / "both" / "results.json"));
+  const auto doc_one = nlohmann::json::parse(read_file(dir.path / "one" / "results.json"));
+  ASSERT_EQ(doc["runs"].size(), 2u);
+  const auto variant = errors_of(doc, "restir-gather:spatial-neighbors=1");
+  ASSERT_EQ(variant.size(), 3u) << "the entry is the run's name";
+  EXPECT_EQ(variant, errors_of(doc_one, "restir-gather")) << "the entry's flag overrides the common --spatial-neighbors 4";
+  EXPECT_NE(variant, errors_of(doc, "restir-gather"));
+
+  auto bad = eval_args(daemon.address(), dir.path / "bad");
+  bad[7] = "pt,restir-gather:no-such-flag=3";
+  const auto refused = run_process(bad, k_render_deadline);
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.output.find("--methods: 'restir-gather:no-such-flag=3'"), std::string::npos) << refused.output;
+  EXPECT_FALSE(fs::exists(dir.path / "bad"));
+  bad[7] = "restir-gather::";
+  const auto empty = run_process(bad, k_render_deadline);
+  EXPECT_NE(empty.exit_code, 0);
+  EXPECT_NE(empty.output.find("has an empty flag"), std::string::npos) << empty.output;
+}
+
 }  // namespace
 }  // namespace strata::test
