@@ -6,7 +6,9 @@
 // With --equal-time, pt then gets as many samples per frame as fit in each other method's median
 // frame time. With --score-from N the first N frames warm each method up: they are played but
 // neither scored nor timed, and need no reference.
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <iostream>
@@ -32,6 +34,7 @@ using Clock = std::chrono::steady_clock;
 struct EvalArgs : EvalSettings {
   std::string scene_list = "cornell", method_list = "pt,restir-gather";
   float exposure = 0.0f;  // PNG insets
+  bool save_frames = false;  // --save-frames: every scored frame and its reference as EXR
   float shutter_value = 0.0f;     // --shutter, when given
   uint32_t splats_value = 1;      // --splats-per-frame, when given
 };
@@ -68,6 +71,7 @@ std::string command_line(const EvalArgs& a) {
   if (const std::string r = restir_flags_text(a.restir); !r.empty()) s << " " << r;
   if (a.equal_time) s << " --equal-time";
   if (a.timing_rounds > 1) s << " --timing-rounds " << a.timing_rounds;
+  if (a.save_frames) s << " --save-frames";
   s << " --out " << a.out;
   return s.str();
 }
@@ -93,6 +97,7 @@ class Evaluation {
                              {"cached", info.cached()}, {"cache_key", info.cache_key()}, {"gpu_ms", info.gpu_ms()},
                              {"render_ms", info.render_ms()}, {"disoccluded_mask", !refs.back().mask.empty()}});
       cache_hits_ += info.cached() ? 1 : 0;
+      if (a_.save_frames) save_reference(scene, f, refs.back());
       step(f, ms_since(t), info.gpu_ms(), scene + " reference frame " + std::to_string(f) + " spp " + std::to_string(info.spp()) +
                                               (info.cached() ? " (cached)" : ""));
     }
@@ -214,6 +219,7 @@ class Evaluation {
         t = Clock::now();
         return;
       }
+      if (a_.save_frames) image::write_exr(frame_path(scene, spp > 1 ? method + "_" + std::to_string(spp) + "spp" : method, m.frame), m.image);
       const bool is_last = m.frame + 1 == a_.frames;
       r.frames.push_back(score_frame(m, refs.at(m.frame - a_.score_from), cumulative, is_last ? flip_map : nullptr));
       cumulative = r.frames.back().cumulative_ms;
@@ -225,6 +231,22 @@ class Evaluation {
       t = Clock::now();
     });
     return r;
+  }
+
+  // --save-frames: DIR/frames/SCENE/RUN/frame_NNNN.exr, RUN a --methods entry (its ':' written
+  // '_', an equal-time pt run pt_Nspp) or "reference"; a reference with a disocclusion mask carries it as the channel "disoccluded".
+  fs::path frame_path(const std::string& scene, std::string run, uint32_t frame) const {
+    std::replace(run.begin(), run.end(), ':', '_');
+    const fs::path dir = fs::path(a_.out) / "frames" / scene / run;
+    fs::create_directories(dir);
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04u.exr", frame);
+    return dir / name;
+  }
+  void save_reference(const std::string& scene, uint32_t frame, const ReferenceImage& ref) const {
+    std::vector<image::Channel> extra;
+    if (!ref.mask.empty()) extra.push_back({"disoccluded", std::vector<float>(ref.mask.begin(), ref.mask.end())});
+    image::write_exr(frame_path(scene, "reference", frame), ref.image, extra);
   }
 
   void step(uint32_t frame, double wall_ms, double gpu_ms, const std::string& detail) {
@@ -350,6 +372,9 @@ Runner add_eval_command(CLI::App& app) {
       ->check(CLI::Range(1u, 16u))
       ->capture_default_str();
   cmd->add_option("--exposure", a->exposure, "exposure of the PNG insets in stops")->capture_default_str();
+  cmd->add_flag("--save-frames", a->save_frames,
+                "also write every scored frame of every run, and its reference (with the disocclusion mask as the "
+                "channel 'disoccluded'), as EXR under OUT/frames/SCENE/RUN/");
   cmd->add_option("--out", a->out, "output directory")->capture_default_str();
   cmd->add_option("--timeout", a->timeout_s, "seconds for each call (a reference can take long)")->capture_default_str();
   return [a, frames, shutter, splats] {

@@ -23,7 +23,7 @@ void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
                   "ReSTIR spatial neighbours of pixels without history (0..8; 0: --spatial-neighbors; default 6)");
   cmd->add_option("--disocclusion-initial-candidates", r.disocclusion_initial_candidates,
                   "ReSTIR splat: candidate paths of pixels no splat reached, restir-multilayer: of disoccluded ones (0..64; 0: the "
-                  "method's, 4 for restir-multilayer, else --initial-candidates; = --initial-candidates: off; default 0)");
+                  "method's, 8 for restir-multilayer, else --initial-candidates; = --initial-candidates: off; default 0)");
   cmd->add_option("--direct-strata", r.direct_strata,
                   "ReSTIR: G x G stratified camera samples for what pixels at edges of directly seen emission see (1..8; default 3)");
   cmd->add_option("--albedo-strata", r.albedo_strata,

@@ -120,7 +120,7 @@ Runner add_render_command(CLI::App& app) {
                   "ReSTIR spatial neighbours of pixels without history (0..8; 0: --spatial-neighbors)")
       ->capture_default_str();
   cmd->add_option("--disocclusion-initial-candidates", r.disocclusion_initial_candidates,
-                  "ReSTIR splat: candidate paths of pixels no splat reached, restir-multilayer: of disoccluded ones (0..64; 0: the method's, 4 for restir-multilayer, else --initial-candidates; = --initial-candidates: off)")
+                  "ReSTIR splat: candidate paths of pixels no splat reached, restir-multilayer: of disoccluded ones (0..64; 0: the method's, 8 for restir-multilayer, else --initial-candidates; = --initial-candidates: off)")
       ->capture_default_str();
   cmd->add_option("--direct-strata", r.direct_strata, "ReSTIR: G x G camera samples at edges of directly seen emission (1..8)")
       ->capture_default_str();

@@ -41,7 +41,7 @@ const std::vector<MethodSpec>& method_table() {
        false, S::temporal_splat, false, 2.0f, 0},
       {"restir-multilayer",
        "multi-layer reservoir splatting: pixel-layer domains with depth ranges, active domains kept through disocclusions (ML)", true,
-       false, true, false, true, S::temporal_splat, false, 2.0f, 4},
+       false, true, false, true, S::temporal_splat, false, 2.0f, 8},
   };
   return table;
 }

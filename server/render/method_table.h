@@ -41,9 +41,9 @@ struct MethodSpec {
   // restir-gather and the splat methods, 4 for restir-di (2 and 4 tie there).
   float confidence_cap;
   // The default of RestirOptions::disocclusion_initial_candidates (0 there): the candidate paths of
-  // a disoccluded pixel that no splat reached. 4 for restir-multilayer, whose deep domains cover most
+  // a disoccluded pixel that no splat reached. 8 for restir-multilayer, whose deep domains cover most
   // disoccluded pixels, so that the few left uncovered (surfaces no layer held: new ones, and those
-  // the activation missed) take 4 paths, at little cost (docs/ARCHITECTURE.md, "Pixel layers");
+  // the activation missed) take 8 paths, at little cost (docs/ARCHITECTURE.md, "Pixel layers");
   // 0 (initial_candidates) for the others, where every landing hole would pay for it.
   uint32_t disocclusion_initial_candidates;
   std::vector<StageKind> stages() const;  // all stages, in frame order, before options switch any off

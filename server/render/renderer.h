@@ -94,7 +94,7 @@ struct RestirOptions {
   // Splat methods: initial candidates of the pixels no temporal splat reached, the ML paper's "more
   // initial spp" disocclusion baseline (Fig. 9); restir-multilayer: of those its domain_build found
   // disoccluded (the landing holes of surfaces that were in view take initial_candidates). 0: the
-  // method's (MethodSpec::disocclusion_initial_candidates: restir-multilayer 4, the others
+  // method's (MethodSpec::disocclusion_initial_candidates: restir-multilayer 8, the others
   // initial_candidates); a value equal to initial_candidates turns the boost off.
   uint32_t disocclusion_initial_candidates = 0;
   // LoD-aware reuse (the LOD paper; docs/ARCHITECTURE.md, "Surface resolver"): lod_mapping auto (uv

@@ -451,7 +451,7 @@ TEST_P(MultilayerNumerics, EveryPixelAndLayerIsFinite) {
 
 // The ML paper's "more initial spp" baseline (Fig. 9) for the splat methods: the splat sort runs
 // before the initial pass, and exactly the front-layer pixels no splat reached (temporal.no_history)
-// trace disocclusion_initial_candidates paths; restir-multilayer (by default, 4) only those of them
+// trace disocclusion_initial_candidates paths; restir-multilayer (by default, 8) only those of them
 // its domain_build found disoccluded, which no deep splat covered, not the landing holes of
 // surfaces that stayed in view. Its unbiasedness: restir_unbiased_test.cpp.
 TEST_F(MultilayerDomains, DisocclusionBoostTakesThePixelsNoSplatReached) {

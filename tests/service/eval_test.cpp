@@ -306,14 +306,14 @@ TEST(EvalTest, ScoreFromPlaysTheWarmUpWithoutScoringIt) {
 // variants of one method run (and are timed) side by side. The variant's frames equal those of the
 // method run with the same flags given to all (the errors are deterministic for the seed), and
 // differ from the entry without them; an entry with a flag that does not exist is refused before
-// any work.
+// any work. --save-frames writes each run's scored frames and the references.
 TEST(EvalTest, MethodEntriesCarryFlagsOfTheirOwn) {
   TempDir dir;
   Daemon daemon({"--reference-cache", (dir.path / "cache").string()});
   auto both = eval_args(daemon.address(), dir.path / "both");
   both[7] = "restir-gather,restir-gather:spatial-neighbors=1";
   both.erase(std::find(both.begin(), both.end(), "--equal-time"));
-  for (const char* a : {"--spatial-neighbors", "4"}) both.push_back(a);
+  for (const char* a : {"--spatial-neighbors", "4", "--save-frames"}) both.push_back(a);
   const auto result = run_process(both, 300s);
   ASSERT_EQ(result.exit_code, 0) << result.output;
   auto one = eval_args(daemon.address(), dir.path / "one");
@@ -336,6 +336,13 @@ TEST(EvalTest, MethodEntriesCarryFlagsOfTheirOwn) {
   ASSERT_EQ(variant.size(), 3u) << "the entry is the run's name";
   EXPECT_EQ(variant, errors_of(doc_one, "restir-gather")) << "the entry's flag overrides the common --spatial-neighbors 4";
   EXPECT_NE(variant, errors_of(doc, "restir-gather"));
+  // --save-frames: every scored frame of each run and its reference, as EXR.
+  for (const char* run : {"reference", "restir-gather", "restir-gather_spatial-neighbors=1"})
+    for (const char* frame : {"frame_0000.exr", "frame_0001.exr", "frame_0002.exr"}) {
+      const fs::path p = dir.path / "both" / "frames" / "cornell" / run / frame;
+      ASSERT_TRUE(fs::exists(p)) << p;
+      EXPECT_GT(fs::file_size(p), 100u) << p;
+    }
 
   auto bad = eval_args(daemon.address(), dir.path / "bad");
   bad[7] = "pt,restir-gather:no-such-flag=3";
