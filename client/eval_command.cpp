@@ -5,8 +5,9 @@
 // reference has them), and writes results.csv, results.json and a self-contained report.html.
 // With --equal-time, pt then gets as many samples per frame as fit in each other method's median
 // frame time. With --score-from N the first N frames warm each method up: they are played but
-// neither scored nor timed, and need no reference.
-#include <algorithm>
+// neither scored nor timed, and need no reference. A --methods entry may carry ReSTIR flags of its
+// own (eval_method.h); --save-frames keeps every scored frame and its reference as EXR.
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -233,10 +234,13 @@ class Evaluation {
     return r;
   }
 
-  // --save-frames: DIR/frames/SCENE/RUN/frame_NNNN.exr, RUN a --methods entry (its ':' written
-  // '_', an equal-time pt run pt_Nspp) or "reference"; a reference with a disocclusion mask carries it as the channel "disoccluded".
+  // --save-frames: DIR/frames/SCENE/RUN/frame_NNNN.exr, RUN a --methods entry (every character but
+  // letters, digits, '.', '=' and '-' written '_'; an equal-time pt run pt_Nspp) or "reference"; a
+  // reference with a disocclusion mask carries it as the channel "disoccluded".
   fs::path frame_path(const std::string& scene, std::string run, uint32_t frame) const {
-    std::replace(run.begin(), run.end(), ':', '_');
+    for (char& c : run)
+      if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '=' && c != '-') c = '_';
+    if (run.find_first_not_of('.') == std::string::npos) run = "_";
     const fs::path dir = fs::path(a_.out) / "frames" / scene / run;
     fs::create_directories(dir);
     char name[32];
