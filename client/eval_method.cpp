@@ -6,7 +6,7 @@
 namespace strata::client {
 
 EvalMethod parse_eval_method(const std::string& entry, const RestirFlags& common) {
-  EvalMethod m{entry, "", common};
+  EvalMethod m{"", common};
   std::stringstream parts(entry);
   std::getline(parts, m.method, ':');
   if (m.method.empty()) throw std::runtime_error("--methods: '" + entry + "' names no method before its flags");

@@ -13,7 +13,6 @@
 namespace strata::client {
 
 struct EvalMethod {
-  std::string entry;   // as written in --methods: the run's name
   std::string method;  // the server's method (CreateSessionRequest.method)
   RestirFlags restir;  // the evaluation's ReSTIR flags with the entry's own applied
 };

@@ -60,7 +60,7 @@ void main() {
     // A dormant domain is not about to be uncovered (the reveal prediction or the silhouette band):
     // it keeps its layer and its immediate occluder instead of counting them along the ray, and
     // domain_build's occluder check confirms the occluder at its new pixel (ML Sec. 5, footnote 2).
-    found = d / (u_frame.prev_width * u_frame.prev_height);
+    found = prev_domain_layer_of(d);
     occluder = b_domains_prev[d].occluder;
   } else {
     LayerWalk w = walk_to_point(false, origin, dir, c, dist);  // ML Fig. 2

@@ -301,7 +301,6 @@ TEST(EvalTest, ScoreFromPlaysTheWarmUpWithoutScoringIt) {
   EXPECT_FALSE(fs::exists(dir.path / "bad"));
 }
 
-
 // --methods NAME:FLAG=VALUE: an entry carries ReSTIR flags of its own over those given to all, so
 // variants of one method run (and are timed) side by side. The variant's frames equal those of the
 // method run with the same flags given to all (the errors are deterministic for the seed), and
