@@ -28,6 +28,9 @@ void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
                   "ReSTIR: G x G stratified camera samples for what pixels at edges of directly seen emission see (1..8; default 3)");
   cmd->add_option("--albedo-strata", r.albedo_strata,
                   "ReSTIR gather: G x G camera samples of the albedo control variate at albedo edges (1..8; 1: off; default 2)");
+  cmd->add_option("--colour-cv", r.colour_cv,
+                  "ReSTIR gather: b of the colour control variate, the share of the way from each pixel's colour to that of its "
+                  "initial paths (0..1; 0: off; default 0.4)");
   cmd->add_option("--layers", r.layers,
                   "restir-multilayer: pixel layers (0..8; 0: auto, measured from the scene's depth complexity; default 0)");
   cmd->add_option("--hole-fill-radius", r.hole_fill_radius, "restir-multilayer: hole filling radius in pixels (0..8; 0: off; default 3)");
@@ -78,6 +81,7 @@ std::string restir_flags_text(const RestirFlags& r) {
     add("--disocclusion-initial-candidates", std::to_string(*r.disocclusion_initial_candidates));
   if (r.direct_strata) add("--direct-strata", std::to_string(*r.direct_strata));
   if (r.albedo_strata) add("--albedo-strata", std::to_string(*r.albedo_strata));
+  if (r.colour_cv) add("--colour-cv", num(*r.colour_cv));
   if (r.layers) add("--layers", std::to_string(*r.layers));
   if (r.hole_fill_radius) add("--hole-fill-radius", std::to_string(*r.hole_fill_radius));
   if (r.silhouette_band) add("--silhouette-band", std::to_string(*r.silhouette_band));
@@ -116,6 +120,7 @@ void set_restir_options(const RestirFlags& r, v1::RenderOptions& o) {
   if (r.disocclusion_initial_candidates) o.set_disocclusion_initial_candidates(*r.disocclusion_initial_candidates);
   if (r.direct_strata) o.set_direct_strata(*r.direct_strata);
   if (r.albedo_strata) o.set_albedo_strata(*r.albedo_strata);
+  if (r.colour_cv) o.set_colour_cv(*r.colour_cv);
   if (r.layers) o.set_layers(*r.layers);
   if (r.hole_fill_radius) o.set_hole_fill_radius(*r.hole_fill_radius);
   if (r.silhouette_band) o.set_silhouette_band(*r.silhouette_band);

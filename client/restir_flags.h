@@ -14,7 +14,7 @@ namespace strata::client {
 struct RestirFlags {
   std::string shift, mis, suffix, layer_mode, lod_mapping, lod_vertices;  // empty: not given
   std::optional<bool> lod_matching, deep_backup;
-  std::optional<float> confidence_cap, still_confidence_cap, spatial_radius;
+  std::optional<float> confidence_cap, still_confidence_cap, spatial_radius, colour_cv;
   std::optional<uint32_t> spatial_neighbors, initial_candidates, light_candidates, disocclusion_spatial_neighbors, disocclusion_initial_candidates, direct_strata,
       albedo_strata, layers, hole_fill_radius, silhouette_band, reveal_lookahead;
   bool no_temporal = false, no_spatial = false, biased = false, no_temporal_filter = false;
@@ -22,7 +22,7 @@ struct RestirFlags {
 
 // Adds --shift, --mis, --suffix, --confidence-cap, --still-confidence-cap, --spatial-neighbors, --spatial-radius,
 // --initial-candidates, --light-candidates, --disocclusion-spatial-neighbors, --direct-strata,
-// --albedo-strata, --layers, --hole-fill-radius, --silhouette-band, --deep-backup, --layer-mode, --lod-mapping, --lod-matching, --lod-vertices, --no-temporal, --no-spatial, --no-temporal-filter and --biased to `cmd`.
+// --albedo-strata, --colour-cv, --layers, --hole-fill-radius, --silhouette-band, --deep-backup, --layer-mode, --lod-mapping, --lod-matching, --lod-vertices, --no-temporal, --no-spatial, --no-temporal-filter and --biased to `cmd`.
 void add_restir_flags(CLI::App* cmd, RestirFlags& r);
 
 // The given flags as they are written on a command line ("" when none is given).

@@ -59,6 +59,10 @@ struct RestirOptions {
   // with G x G stratified camera samples of the albedo (restir_initial.comp, restir_shade.comp;
   // docs/ARCHITECTURE.md, "The albedo control variate"); 1: off.
   uint32_t albedo_strata = 2;
+  // b of the colour control variate of the gather methods (restir_shade.comp; docs/ARCHITECTURE.md,
+  // "The colour control variate"): the pixel keeps its luminance and takes b of the way towards the
+  // colour of its initial paths; 0: off.
+  float colour_cv = 0.4f;
   bool temporal_filter = true;       // gather: the history pixel's centre surface must be like this pixel's
   // The confidence cap of a pixel where nothing moved since the previous frame (the camera, and the
   // instance its primary vertex or pixel centre lies on); 0: the moving cap. Chosen by measurement:
@@ -129,6 +133,7 @@ struct RestirOptions {
   uint32_t albedo_strata_used(const MethodSpec& method) const {
     return method.fixed_primary && albedo_strata > 1 ? albedo_strata : 0u;
   }
+  float colour_cv_used(const MethodSpec& method) const { return method.fixed_primary ? colour_cv : 0.0f; }
   // The radius the spatial pass uses for an image `height` pixels high.
   float spatial_radius_pixels(uint32_t height) const { return spatial_radius > 0.0f ? spatial_radius : default_spatial_radius(height); }
 

@@ -181,6 +181,18 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                            "the pixel's earlier demodulated radiance times the difference between the mean albedo of " +
                                u(eff.albedo_strata() * eff.albedo_strata()) +
                                " stratified camera samples and the primary vertex's (docs/ARCHITECTURE.md)"));
+  out.push_back(make("colour_cv", asked(req.has_colour_cv(), format_float(req.colour_cv())), format_float(eff.colour_cv()),
+                     method.reuse && options.colour_cv_used(method) > 0.0f && (temporal || eff.spatial_reuse()),
+                     !method.reuse ? no_reuse
+                     : !method.fixed_primary
+                         ? "the splat methods keep the camera sample in the sample; the control variate needs both estimates "
+                           "of one primary vertex"
+                     : eff.colour_cv() == 0.0f ? "off: each pixel's colour is that of the paths its reservoirs hold"
+                     : !temporal && !eff.spatial_reuse()
+                         ? "nothing to correct: without reuse the pixel's estimate is its initial paths'"
+                         : "each pixel keeps its luminance and takes " + format_float(eff.colour_cv()) +
+                               " of the way to the colour of its initial paths; the colour comes from the initial estimates "
+                               "of a 5 x 5 window, less the pixels whose reservoirs it reused (docs/ARCHITECTURE.md)"));
   out.push_back(make("temporal_filter", asked(req.has_temporal_filter(), on_off(req.temporal_filter())),
                      on_off(eff.temporal_filter()), temporal && !method.splatting,
                      !method.reuse ? no_reuse

@@ -73,6 +73,7 @@ void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, cons
               p + "disocclusion_initial_candidates", "0 = the method's");
   check_range(o.has_direct_strata(), o.direct_strata(), 1, RESTIR_MAX_DIRECT_STRATA, p + "direct_strata");
   check_range(o.has_albedo_strata(), o.albedo_strata(), 1, RESTIR_MAX_DIRECT_STRATA, p + "albedo_strata", "1 = off");
+  check_float(o.has_colour_cv(), o.colour_cv(), 0.0f, 1.0f, p + "colour_cv", "(0 = off)");
   check_float(o.has_exposure(), o.exposure(), -64.0f, 64.0f, p + "exposure");
 }
 
@@ -113,6 +114,7 @@ render::RestirOptions restir_options(const v1::RenderOptions& e) {
   r.disocclusion_initial_candidates = e.disocclusion_initial_candidates();
   r.direct_strata = e.direct_strata();
   r.albedo_strata = e.albedo_strata();
+  r.colour_cv = e.colour_cv();
   r.temporal_filter = e.temporal_filter();
   r.layers = e.layers();
   r.hole_fill_radius = e.hole_fill_radius();
@@ -159,6 +161,7 @@ v1::RenderOptions with_defaults(const v1::RenderOptions& requested, const render
   o.set_disocclusion_initial_candidates(restir.disocclusion_initial_candidates);  // 0: the method's (it needs k, not known here)
   o.set_direct_strata(restir.direct_strata);
   o.set_albedo_strata(restir.albedo_strata);
+  o.set_colour_cv(restir.colour_cv);
   o.set_temporal_filter(restir.temporal_filter);
   o.set_layers(restir.layers);
   o.set_hole_fill_radius(restir.hole_fill_radius);

@@ -48,6 +48,7 @@ std::vector<std::string> restir_changes(const render::RestirOptions& a, const re
   field("lod_vertices", a.lod_vertices, b.lod_vertices);
   field("direct_strata", a.direct_strata, b.direct_strata);
   field("albedo_strata", a.albedo_strata, b.albedo_strata);
+  field("colour_cv", a.colour_cv, b.colour_cv);
   field("temporal_filter", a.temporal_filter, b.temporal_filter);
   field("deep_backup", a.deep_backup, b.deep_backup);
   return out;

@@ -445,6 +445,14 @@ void main() {
   if (u_restir.direct_strata > 1u && edges.emission) g_primary_emission = direct_emission(pixel, index);
   store_output(domain, r, f, g_state.estimate);  // the path's contributions summed, as pt's estimate
   b_contribution[primary_emission_index(pixel)] = vec4(g_primary_emission, 0.0);
+  if (u_restir.colour_cv > 0.0) {
+    // The colour control variate's B (restir_shade.comp): this estimate, kept apart from the later
+    // passes' (store_output sanitized it), and an empty window mask for the spatial pass to fill.
+    uint domains = domain_count();
+    uint pixels = u_frame.width * u_frame.height;
+    vec3 b = b_contribution[estimate_index(domain)].rgb;
+    b_contribution[contribution_canonical_index(index, domains, pixels)] = vec4(b, uintBitsToFloat(0u));
+  }
   if (u_restir.albedo_strata > 0u) {
     uint domains = domain_count();
     uint pixels = u_frame.width * u_frame.height;

@@ -11,6 +11,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 #include "include/bindings.h"
 #include "include/frame_data.h"
+#include "material/bsdf.h"
 #include "restir/domain.h"
 #include "restir/layer_data.h"
 #include "restir/restir_data.h"
@@ -23,6 +24,39 @@ layout(set = 0, binding = BINDING_CONTRIBUTION, std430) buffer Contribution { ve
 layout(set = 0, binding = BINDING_RESTIR, std140) uniform Restir { GpuRestirConstants u_restir; };
 layout(set = 0, binding = BINDING_ACCUM, std430) buffer Accum { vec4 b_accum[]; };
 layout(set = 0, binding = BINDING_DOMAINS, std430) readonly buffer Domains { GpuDomainRange b_domains[]; };
+
+uint pixel_index(uvec2 pixel) { return pixel.y * u_frame.width + pixel.x; }
+
+// The colour control variate (docs/ARCHITECTURE.md, "The colour control variate"): with A the
+// pixel's estimate (reflected light, after temporal and spatial reuse) and B the initial pass's
+// estimate of the same frame,
+//   E = A + b (I - w lum^T) (B - A),   lum(w) = 1,
+// keeps A's luminance (lum^T (I - w lum^T) = 0) and moves its colour towards B's, whose paths are
+// all of this frame's NEE connections and emitter hits, where A's are mostly the one path its history
+// holds. E[B - A] = 0 (both estimate the pixel given its primary vertex), so E is unbiased for any
+// b and any w independent of A and B: w is the colour of the initial estimates of the pixels in a
+// window around this one, leaving out this pixel and those whose reservoirs the spatial pass reused
+// here (their initial paths are in A). Returns E, or A where the window sees no light.
+vec3 colour_control_variate(uvec2 pixel, vec3 a, uint pixels, uint domains) {
+  vec4 own = b_contribution[contribution_canonical_index(pixel_index(pixel), domains, pixels)];
+  uint reused = floatBitsToUint(own.w);
+  vec3 window = vec3(0.0);
+  for (int dy = -COLOUR_CV_RADIUS; dy <= COLOUR_CV_RADIUS; ++dy) {
+    for (int dx = -COLOUR_CV_RADIUS; dx <= COLOUR_CV_RADIUS; ++dx) {
+      ivec2 d = ivec2(dx, dy);
+      ivec2 q = ivec2(pixel) + d;
+      if (d == ivec2(0) || (reused & (1u << colour_cv_window_bit(d))) != 0u) continue;
+      if (q.x < 0 || q.y < 0 || q.x >= int(u_frame.width) || q.y >= int(u_frame.height)) continue;
+      window += b_contribution[contribution_canonical_index(uint(q.y) * u_frame.width + uint(q.x), domains, pixels)].rgb;
+    }
+  }
+  float y = luminance(window);
+  if (!(y > 0.0) || isinf(y)) return a;
+  vec3 w = window / y;
+  vec3 d = own.rgb - a;
+  vec3 e = a + u_restir.colour_cv * (d - w * luminance(d));
+  return any(isnan(e)) || any(isinf(e)) ? a : e;
+}
 
 // view_layer i >= 1: the estimate of the pixel's layer-i domain, I_i of ML Eq. 3 (its surface's
 // radiance towards the camera with the camera's visibility left out), 0 where the domain is inactive.
@@ -56,6 +90,12 @@ void main() {
     atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], 1u);
     l = vec3(0.0);
     reflected = vec3(0.0);
+  } else if (u_restir.colour_cv > 0.0) {
+    // After the test: E may take a channel slightly below 0, as the albedo control variate may
+    // (docs/ARCHITECTURE.md); a non-finite E leaves A.
+    vec3 e = colour_control_variate(pixel, reflected, pixels, domains);
+    l += e - reflected;
+    reflected = e;
   }
   if (u_restir.albedo_strata > 0u) {
     // The albedo control variate (docs/ARCHITECTURE.md): E_hat (A_mean - A(x_1)), with E_hat the

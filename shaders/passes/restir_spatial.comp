@@ -138,6 +138,17 @@ void main() {
     c_total += c_nb[j];
   }
   if (filtered > 0u) atomicAdd(b_counters[COUNTER_SPATIAL_FILTERED], filtered);
+  if (u_restir.colour_cv > 0.0) {
+    // The colour control variate (restir_shade.comp) must not take its colour from a pixel whose
+    // reservoir this one reuses: mark the neighbours inside its window.
+    uint mask = 0u;
+    for (uint j = 0u; j < count; ++j) {
+      ivec2 d = ivec2(domain_pixel(nb[j], u_frame.width)) - ivec2(pixel);
+      if (max(abs(d.x), abs(d.y)) <= COLOUR_CV_RADIUS) mask |= 1u << colour_cv_window_bit(d);
+    }
+    uint pixels = u_frame.width * u_frame.height;
+    b_contribution[contribution_canonical_index(pixel_index(pixel), pixels * u_restir.layers, pixels)].w = uintBitsToFloat(mask);
+  }
   float k = float(count);
   bool pairwise = u_restir.mis_mode == MIS_PAIRWISE;
 

@@ -30,6 +30,17 @@ INLINE uint contribution_estimate_index(uint domain, uint domains, uint pixels) 
 INLINE uint contribution_cv_delta_index(uint pixel, uint domains, uint pixels) { return 2u * domains + pixels + pixel; }
 INLINE uint contribution_cv_albedo_index(uint pixel, uint domains, uint pixels) { return 2u * domains + 2u * pixels + pixel; }
 INLINE uint contribution_cv_history_index(uint pixel, uint domains, uint pixels) { return 2u * domains + 3u * pixels + pixel; }
+// With the colour control variate (restir_shade.comp), per pixel: the initial pass's estimate of the
+// reflected light (rgb) and, in w's bits, the window pixels whose reservoirs the spatial pass reused
+// (colour_cv_window_bit).
+INLINE uint contribution_canonical_index(uint pixel, uint domains, uint pixels) { return 2u * domains + 4u * pixels + pixel; }
+
+// The colour control variate's window: the pixels within COLOUR_CV_RADIUS of a pixel (Chebyshev),
+// one bit each, row by row; the centre's bit is never set.
+CONST_DEF int COLOUR_CV_RADIUS = 2;
+INLINE uint colour_cv_window_bit(ivec2 offset) {
+  return uint((offset.y + COLOUR_CV_RADIUS) * (2 * COLOUR_CV_RADIUS + 1) + offset.x + COLOUR_CV_RADIUS);
+}
 
 STRATA_NAMESPACE_END
 #endif

@@ -49,7 +49,7 @@ struct GpuRestirConstants {
   uint disocclusion_initial_candidates;  // splat methods: candidates of front-layer pixels no splat reached (restir-multilayer: disoccluded ones); 0: none (RestirOptions::disocclusion_candidates)
   uint silhouette_band;     // restir-multilayer: deep domains farther than this many pixels from a front-layer silhouette are dormant (0: off)
   uint reveal_lookahead;    // restir-multilayer: a deep domain whose motion is known samples when predicted to be uncovered within this many frames, else dormant (0: off)
-  uint pad4;
+  float colour_cv;          // gather methods: b of the colour control variate (restir_shade.comp; 0: off)
 };
 
 // Why a shift failed; counted per pass (COUNTER_SHIFT_* + reason).

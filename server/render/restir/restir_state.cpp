@@ -34,6 +34,7 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
   c.splats_per_frame = o.splats_per_frame;
   c.direct_strata = o.direct_strata_used(spec);
   c.albedo_strata = o.albedo_strata_used(spec);
+  c.colour_cv = o.colour_cv_used(spec);
   c.suffix_mode = o.suffix == "fail"     ? gpu::SUFFIX_FAIL
                   : o.suffix == "cached" ? gpu::SUFFIX_CACHED
                   : o.suffix == "replay" ? gpu::SUFFIX_REPLAY
@@ -103,7 +104,9 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
   history = PingPong(ctx, sizeof(gpu::PackedReservoir) * domains, "reservoirs (history)");
   // Per domain f(Y) of the reservoir there, per pixel what the camera rays see directly, per
   // domain the estimate the shade pass adds (restir/domain.h).
-  contribution = device_storage(ctx, sizeof(glm::vec4) * (2 * domains + 4 * pixels), "contribution");
+  // With the colour control variate, per pixel the initial estimate and the reused window pixels.
+  const uint64_t colour_cv_sections = c.colour_cv > 0.0f ? 1 : 0;
+  contribution = device_storage(ctx, sizeof(glm::vec4) * (2 * domains + (4 + colour_cv_sections) * pixels), "contribution");
   // The temporal stages, the spatial stage's neighbour filter and, with fixed primary vertices, the
   // initial stage read the visibility buffer. Without any of them there is no primary stage, and
   // the initial pass binds one entry that it never reads (its layout has the binding).

@@ -1,0 +1,71 @@
+// The colour control variate of the gather methods (docs/ARCHITECTURE.md, "The colour control
+// variate"; restir_shade.comp): E = A + b (I - w lum^T) (B - A) with lum(w) = 1 keeps each pixel's
+// luminance and changes only its colour; the splat methods do not use it and hold no memory for it.
+// Its unbiasedness is tests/restir/restir_unbiased_test.cpp's (every gather case runs with the
+// default b; lod_cliff_gather is the two-coloured scene the variate is for).
+#include <cmath>
+
+#include "gpu/gpu_context.h"
+#include "render/renderer.h"
+#include "scene/scene_io.h"
+#include "support/test_scenes.h"
+
+namespace strata::test {
+namespace {
+
+class ColourControlVariate : public GpuTest {};
+
+struct CliffRun {
+  std::vector<image::Image> frames;
+  std::map<std::string, uint64_t> memory;
+};
+
+// Frames 36..39 of lod-cliff (the camera flies towards the cliff: every frame reuses history).
+CliffRun render_cliff(const std::string& method, float colour_cv) {
+  scene::Scene s = scene::builtin_scene("lod-cliff");
+  render::RenderSettings rs;
+  rs.width = 24;
+  rs.height = 24;
+  rs.method = method;
+  rs.max_depth = 4;
+  rs.restir.colour_cv = colour_cv;
+  rs.restir.albedo_strata = 1;  // the albedo control variate's history would carry E into later frames
+  render::Renderer renderer(gpu_context(), s, rs);
+  CliffRun run;
+  for (uint32_t f = 0; f < 4; ++f) run.frames.push_back(renderer.render(s.frame_state(36 + f), f).image);
+  run.memory = renderer.memory_bytes();
+  return run;
+}
+
+double luminance(const float* rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+
+TEST_F(ColourControlVariate, KeepsEachPixelsLuminanceAndChangesItsColour) {
+  const CliffRun off = render_cliff("restir-gather", 0.0f);
+  const CliffRun on = render_cliff("restir-gather", 0.4f);
+  size_t changed = 0, pixels = 0;
+  for (size_t f = 0; f < off.frames.size(); ++f) {
+    const auto& a = off.frames[f].rgba;
+    const auto& e = on.frames[f].rgba;
+    ASSERT_EQ(a.size(), e.size());
+    for (size_t i = 0; i < a.size(); i += 4) {
+      // lum(E) = lum(A) up to float rounding of lum(w) = 1.
+      const double la = luminance(&a[i]), le = luminance(&e[i]);
+      ASSERT_NEAR(le, la, 1e-4 * std::abs(la) + 1e-6) << "frame " << f << " pixel " << i / 4;
+      ++pixels;
+      if (std::abs(e[i] - a[i]) > 1e-4f * std::abs(a[i]) || std::abs(e[i + 2] - a[i + 2]) > 1e-4f * std::abs(a[i + 2])) ++changed;
+    }
+  }
+  // Frame 0 has no history, but spatial reuse moves its colour away from the initial paths' too.
+  EXPECT_GT(changed, pixels / 2) << changed << " of " << pixels << " pixels changed colour";
+  EXPECT_GT(on.memory.at("contribution"), off.memory.at("contribution")) << "the initial estimates and window masks";
+}
+
+TEST_F(ColourControlVariate, SplatMethodsLeaveItOut) {
+  const CliffRun off = render_cliff("restir-splat", 0.0f);
+  const CliffRun on = render_cliff("restir-splat", 0.4f);
+  for (size_t f = 0; f < off.frames.size(); ++f) EXPECT_EQ(off.frames[f].rgba, on.frames[f].rgba) << "frame " << f;
+  EXPECT_EQ(on.memory.at("contribution"), off.memory.at("contribution"));
+}
+
+}  // namespace
+}  // namespace strata::test
