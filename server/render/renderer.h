@@ -133,7 +133,8 @@ struct RestirOptions {
   uint32_t albedo_strata_used(const MethodSpec& method) const {
     return method.fixed_primary && albedo_strata > 1 ? albedo_strata : 0u;
   }
-  float colour_cv_used(const MethodSpec& method) const { return method.fixed_primary ? colour_cv : 0.0f; }
+  // Without reuse the pixel's estimate is its initial paths' (A = B): nothing to correct, no pass or memory.
+  float colour_cv_used(const MethodSpec& method) const { return method.fixed_primary && (temporal || spatial) ? colour_cv : 0.0f; }
   // The radius the spatial pass uses for an image `height` pixels high.
   float spatial_radius_pixels(uint32_t height) const { return spatial_radius > 0.0f ? spatial_radius : default_spatial_radius(height); }
 

@@ -182,7 +182,7 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                                u(eff.albedo_strata() * eff.albedo_strata()) +
                                " stratified camera samples and the primary vertex's (docs/ARCHITECTURE.md)"));
   out.push_back(make("colour_cv", asked(req.has_colour_cv(), format_float(req.colour_cv())), format_float(eff.colour_cv()),
-                     method.reuse && options.colour_cv_used(method) > 0.0f && (temporal || eff.spatial_reuse()),
+                     method.reuse && options.colour_cv_used(method) > 0.0f,
                      !method.reuse ? no_reuse
                      : !method.fixed_primary
                          ? "the splat methods keep the camera sample in the sample; the control variate needs both estimates "
