@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "restir/domain.h"
 #include "service/input_checks.h"
 #include "service/options.h"
 
@@ -191,8 +192,9 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                      : !temporal && !eff.spatial_reuse()
                          ? "nothing to correct: without reuse the pixel's estimate is its initial paths'"
                          : "each pixel keeps its luminance and takes " + format_float(eff.colour_cv()) +
-                               " of the way to the colour of its initial paths; the colour comes from the initial estimates "
-                               "of a 5 x 5 window, less the pixels whose reservoirs it reused (docs/ARCHITECTURE.md)"));
+                               " of the way to the colour of its initial paths; the colour comes from the initial estimates of a " +
+                               u(2 * gpu::COLOUR_CV_RADIUS + 1) + " x " + u(2 * gpu::COLOUR_CV_RADIUS + 1) +
+                               " window, less the pixels whose reservoirs it reused (docs/ARCHITECTURE.md)"));
   out.push_back(make("temporal_filter", asked(req.has_temporal_filter(), on_off(req.temporal_filter())),
                      on_off(eff.temporal_filter()), temporal && !method.splatting,
                      !method.reuse ? no_reuse

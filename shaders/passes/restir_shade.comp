@@ -47,7 +47,7 @@ vec3 colour_control_variate(uvec2 pixel, vec3 a, uint pixels, uint domains) {
       ivec2 q = ivec2(pixel) + d;
       if (d == ivec2(0) || (reused & (1u << colour_cv_window_bit(d))) != 0u) continue;
       if (q.x < 0 || q.y < 0 || q.x >= int(u_frame.width) || q.y >= int(u_frame.height)) continue;
-      window += b_contribution[contribution_canonical_index(uint(q.y) * u_frame.width + uint(q.x), domains, pixels)].rgb;
+      window += b_contribution[contribution_canonical_index(pixel_index(uvec2(q)), domains, pixels)].rgb;
     }
   }
   float y = luminance(window);
@@ -69,7 +69,7 @@ vec3 layer_view(uvec2 pixel, uint pixels, uint domains) {
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
-  uint index = pixel.y * u_frame.width + pixel.x;
+  uint index = pixel_index(pixel);
   uint domain = domain_index(pixel, 0u, u_frame.width, u_frame.height);  // the front layer is the image
   uint pixels = u_frame.width * u_frame.height;
   uint domains = pixels * u_restir.layers;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "gpu/gpu_context.h"
+#include "material/bsdf.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"
 #include "support/test_scenes.h"
@@ -37,7 +38,7 @@ CliffRun render_cliff(const std::string& method, float colour_cv) {
   return run;
 }
 
-double luminance(const float* rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+float luminance(const float* rgb) { return gpu::luminance(glm::vec3(rgb[0], rgb[1], rgb[2])); }
 
 TEST_F(ColourControlVariate, KeepsEachPixelsLuminanceAndChangesItsColour) {
   const CliffRun off = render_cliff("restir-gather", 0.0f);
@@ -49,7 +50,7 @@ TEST_F(ColourControlVariate, KeepsEachPixelsLuminanceAndChangesItsColour) {
     ASSERT_EQ(a.size(), e.size());
     for (size_t i = 0; i < a.size(); i += 4) {
       // lum(E) = lum(A) up to float rounding of lum(w) = 1.
-      const double la = luminance(&a[i]), le = luminance(&e[i]);
+      const float la = luminance(&a[i]), le = luminance(&e[i]);
       ASSERT_NEAR(le, la, 1e-4 * std::abs(la) + 1e-6) << "frame " << f << " pixel " << i / 4;
       ++pixels;
       if (std::abs(e[i] - a[i]) > 1e-4f * std::abs(a[i]) || std::abs(e[i + 2] - a[i + 2]) > 1e-4f * std::abs(a[i + 2])) ++changed;

@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "gpu/gpu_context.h"
+#include "material/bsdf.h"
 #include "render/method_table.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"
@@ -48,7 +49,7 @@ TEST_P(RestirFinite, EveryPixelOfEveryFrameIsFinite) {
       for (size_t i = 0; i < px.size(); i += 4) {
         for (size_t c = 0; c < 4; ++c)
           ASSERT_TRUE(std::isfinite(px[i + c]) && (colour_cv || px[i + c] >= 0.0f)) << GetParam() << " " << method << " frame " << f;
-        const float lum = 0.2126f * px[i] + 0.7152f * px[i + 1] + 0.0722f * px[i + 2];
+        const float lum = gpu::luminance(glm::vec3(px[i], px[i + 1], px[i + 2]));
         ASSERT_GE(lum, -1e-5f * (std::abs(px[i]) + std::abs(px[i + 1]) + std::abs(px[i + 2])))
             << GetParam() << " " << method << " frame " << f << " pixel " << i / 4;
       }
