@@ -59,10 +59,11 @@ struct RestirOptions {
   // with G x G stratified camera samples of the albedo (restir_initial.comp, restir_shade.comp;
   // docs/ARCHITECTURE.md, "The albedo control variate"); 1: off.
   uint32_t albedo_strata = 2;
-  // b of the colour control variate of the gather methods (restir_shade.comp; docs/ARCHITECTURE.md,
-  // "The colour control variate"): the pixel keeps its luminance and takes b of the way towards the
-  // colour of its initial paths; 0: off.
-  float colour_cv = 0.4f;
+  // The largest b of the colour control variate of the gather methods (restir_shade.comp;
+  // docs/ARCHITECTURE.md, "The colour control variate"): the pixel keeps its luminance and takes b of
+  // the way towards the colour of its initial paths, b shrinking below this where the window's
+  // initial colours spread; 0: off.
+  float colour_cv = 0.6f;
   bool temporal_filter = true;       // gather: the history pixel's centre surface must be like this pixel's
   // The confidence cap of a pixel where nothing moved since the previous frame (the camera, and the
   // instance its primary vertex or pixel centre lies on); 0: the moving cap. Chosen by measurement:

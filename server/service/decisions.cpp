@@ -191,8 +191,8 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                      : eff.colour_cv() == 0.0f ? "off: each pixel's colour is that of the paths its reservoirs hold"
                      : !temporal && !eff.spatial_reuse()
                          ? "nothing to correct: without reuse the pixel's estimate is its initial paths'"
-                         : "each pixel keeps its luminance and takes " + format_float(eff.colour_cv()) +
-                               " of the way to the colour of its initial paths; the colour comes from the initial estimates of a " +
+                         : "each pixel keeps its luminance and takes up to " + format_float(eff.colour_cv()) +
+                               " of the way to the colour of its initial paths (less where their colours spread); the colour comes from the initial estimates of a " +
                                u(2 * gpu::COLOUR_CV_RADIUS + 1) + " x " + u(2 * gpu::COLOUR_CV_RADIUS + 1) +
                                " window, less the pixels whose reservoirs it reused (docs/ARCHITECTURE.md)"));
   out.push_back(make("temporal_filter", asked(req.has_temporal_filter(), on_off(req.temporal_filter())),

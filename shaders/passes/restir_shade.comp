@@ -13,6 +13,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "include/frame_data.h"
 #include "material/bsdf.h"
 #include "restir/domain.h"
+#include "restir/colour_cv.h"
 #include "restir/layer_data.h"
 #include "restir/restir_data.h"
 
@@ -34,27 +35,29 @@ uint pixel_index(uvec2 pixel) { return pixel.y * u_frame.width + pixel.x; }
 // keeps A's luminance (lum^T (I - w lum^T) = 0) and moves its colour towards B's, whose paths are
 // all of this frame's NEE connections and emitter hits, where A's are mostly the one path its history
 // holds. E[B - A] = 0 (both estimate the pixel given its primary vertex), so E is unbiased for any
-// b and any w independent of A and B: w is the colour of the initial estimates of the pixels in a
+// b and w independent of A and B: both come from the initial estimates B_j of the pixels in a
 // window around this one, leaving out this pixel and those whose reservoirs the spatial pass reused
-// here (their initial paths are in A). Returns E, or A where the window sees no light.
+// here (their initial paths are in A). w is the colour of their sum; b shrinks from colour_cv where
+// the B_j disagree in colour (restir/colour_cv.h). Returns E, or A where the window sees no light.
 vec3 colour_control_variate(uvec2 pixel, vec3 a, uint pixels, uint domains) {
   vec4 own = b_contribution[contribution_canonical_index(pixel_index(pixel), domains, pixels)];
   uint reused = floatBitsToUint(own.w);
-  vec3 window = vec3(0.0);
+  ColourWindow window = colour_window_empty();
   for (int dy = -COLOUR_CV_RADIUS; dy <= COLOUR_CV_RADIUS; ++dy) {
     for (int dx = -COLOUR_CV_RADIUS; dx <= COLOUR_CV_RADIUS; ++dx) {
       ivec2 d = ivec2(dx, dy);
       ivec2 q = ivec2(pixel) + d;
       if (d == ivec2(0) || (reused & (1u << colour_cv_window_bit(d))) != 0u) continue;
       if (q.x < 0 || q.y < 0 || q.x >= int(u_frame.width) || q.y >= int(u_frame.height)) continue;
-      window += b_contribution[contribution_canonical_index(pixel_index(uvec2(q)), domains, pixels)].rgb;
+      colour_window_add(window, b_contribution[contribution_canonical_index(pixel_index(uvec2(q)), domains, pixels)].rgb);
     }
   }
-  float y = luminance(window);
+  float y = luminance(window.sum);
   if (!(y > 0.0) || isinf(y)) return a;
-  vec3 w = window / y;
+  vec3 w = window.sum / y;
+  float b = colour_cv_b(u_restir.colour_cv, colour_window_spread(window));
   vec3 d = own.rgb - a;
-  vec3 e = a + u_restir.colour_cv * (d - w * luminance(d));
+  vec3 e = a + b * (d - w * luminance(d));
   return any(isnan(e)) || any(isinf(e)) ? a : e;
 }
 

@@ -4,9 +4,11 @@
 // Its unbiasedness is tests/restir/restir_unbiased_test.cpp's (every gather case runs with the
 // default b; lod_cliff_gather is the two-coloured scene the variate is for).
 #include <cmath>
+#include <vector>
 
 #include "gpu/gpu_context.h"
 #include "material/bsdf.h"
+#include "restir/colour_cv.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"
 #include "support/test_scenes.h"
@@ -42,7 +44,7 @@ float luminance(const float* rgb) { return gpu::luminance(glm::vec3(rgb[0], rgb[
 
 TEST_F(ColourControlVariate, KeepsEachPixelsLuminanceAndChangesItsColour) {
   const CliffRun off = render_cliff("restir-gather", 0.0f);
-  const CliffRun on = render_cliff("restir-gather", 0.4f);
+  const CliffRun on = render_cliff("restir-gather", 0.6f);
   size_t changed = 0, pixels = 0;
   for (size_t f = 0; f < off.frames.size(); ++f) {
     const auto& a = off.frames[f].rgba;
@@ -63,9 +65,46 @@ TEST_F(ColourControlVariate, KeepsEachPixelsLuminanceAndChangesItsColour) {
 
 TEST_F(ColourControlVariate, SplatMethodsLeaveItOut) {
   const CliffRun off = render_cliff("restir-splat", 0.0f);
-  const CliffRun on = render_cliff("restir-splat", 0.4f);
+  const CliffRun on = render_cliff("restir-splat", 0.6f);
   for (size_t f = 0; f < off.frames.size(); ++f) EXPECT_EQ(off.frames[f].rgba, on.frames[f].rgba) << "frame " << f;
   EXPECT_EQ(on.memory.at("contribution"), off.memory.at("contribution"));
+}
+
+// b's shrinkage (restir/colour_cv.h) from the one-pass sums against S written out:
+// n sum_j |B_j - w lum(B_j)|^2 / lum(sum_j B_j)^2.
+TEST(ColourCvSpread, MatchesItsDefinitionAndShrinksB) {
+  const std::vector<std::vector<glm::vec3>> windows = {
+      {{1.0f, 0.5f, 0.25f}, {2.0f, 1.0f, 0.5f}, {0.1f, 0.05f, 0.025f}},                    // one colour: S = 0
+      {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}, {0.3f, 0.3f, 0.3f}},  // saturated, spread
+      {{0.8f, 0.7f, 0.6f}, {0.75f, 0.7f, 0.65f}, {0.7f, 0.7f, 0.7f}, {0.85f, 0.7f, 0.55f}, {30.0f, 28.0f, 26.0f}},
+  };
+  std::vector<float> spreads;
+  for (const auto& bs : windows) {
+    gpu::ColourWindow c = gpu::colour_window_empty();
+    glm::vec3 sum(0.0f);
+    for (const glm::vec3& b : bs) {
+      gpu::colour_window_add(c, b);
+      sum += b;
+    }
+    const float y = gpu::luminance(sum);
+    const glm::vec3 w = sum / y;
+    double direct = 0.0;
+    for (const glm::vec3& b : bs) {
+      const glm::vec3 d = b - w * gpu::luminance(b);
+      direct += glm::dot(d, d);
+    }
+    direct *= double(bs.size()) / (double(y) * y);
+    const float spread = gpu::colour_window_spread(c);
+    EXPECT_NEAR(spread, direct, 1e-4 * direct + 1e-6);
+    spreads.push_back(spread);
+  }
+  EXPECT_NEAR(spreads[0], 0.0f, 1e-6f);
+  EXPECT_GT(spreads[1], 1.0f);  // red, green and blue pixels: B's colour is mostly noise
+  // b = colour_cv where the colours agree, less where they spread, never below 0.
+  EXPECT_NEAR(gpu::colour_cv_b(0.6f, spreads[0]), 0.6f, 1e-5f);
+  EXPECT_LT(gpu::colour_cv_b(0.6f, spreads[1]), 0.3f * 0.6f);
+  EXPECT_GT(gpu::colour_cv_b(0.6f, spreads[2]), gpu::colour_cv_b(0.6f, spreads[1]));
+  EXPECT_EQ(gpu::colour_cv_b(0.0f, spreads[1]), 0.0f);
 }
 
 }  // namespace
