@@ -29,7 +29,7 @@ void add_restir_flags(CLI::App* cmd, RestirFlags& r) {
   cmd->add_option("--albedo-strata", r.albedo_strata,
                   "ReSTIR gather: G x G camera samples of the albedo control variate at albedo edges (1..8; 1: off; default 2)");
   cmd->add_option("--colour-cv", r.colour_cv,
-                  "ReSTIR gather: largest b of the colour control variate, the share of the way from each pixel's colour to that "
+                  "ReSTIR gather and splat: largest b of the colour control variate, the share of the way from each pixel's colour to that "
                   "of its initial paths, less where their colours spread (0..1; 0: off; default 0.6)");
   cmd->add_option("--layers", r.layers,
                   "restir-multilayer: pixel layers (0..8; 0: auto, measured from the scene's depth complexity; default 0)");

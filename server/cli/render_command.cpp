@@ -128,7 +128,10 @@ Runner add_render_command(CLI::App& app) {
                   "ReSTIR gather: G x G camera samples of the albedo control variate at albedo edges (1..8; 1: off)")
       ->capture_default_str();
   cmd->add_option("--colour-cv", r.colour_cv,
-                  "ReSTIR gather: largest b of the colour control variate, the share of the way from the pixel's colour to its initial paths' (0..1; 0: off)")
+                  "ReSTIR gather and splat: largest b of the colour control variate, the share of the way from the pixel's colour to its initial paths' (0..1; 0: off)")
+      ->capture_default_str();
+  cmd->add_option("--colour-cv-spread", r.colour_cv_spread,
+                  "ReSTIR: k of the colour control variate's b = colour_cv k / (k + S), S the spread of the window's initial colours (0..1000; 0: b = colour_cv everywhere)")
       ->capture_default_str();
   cmd->add_option("--layers", r.layers, "restir-multilayer: pixel layers (1..8; 0: auto, from the scene's depth complexity)")
       ->capture_default_str();

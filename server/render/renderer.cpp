@@ -82,6 +82,8 @@ void RestirOptions::validate() const {
           "restir.albedo_strata = " + std::to_string(albedo_strata) + " is outside " + range(1u, RESTIR_MAX_DIRECT_STRATA));
   require(std::isfinite(colour_cv) && colour_cv >= 0.0f && colour_cv <= 1.0f,
           "restir.colour_cv = " + std::to_string(colour_cv) + " is outside [0, 1] (0 = off)");
+  require(std::isfinite(colour_cv_spread) && colour_cv_spread >= 0.0f && colour_cv_spread <= 1000.0f,
+          "restir.colour_cv_spread = " + std::to_string(colour_cv_spread) + " is outside [0, 1000] (0 = b is colour_cv everywhere)");
   require(splats_per_frame >= 1 && splats_per_frame <= RESTIR_MAX_SPLATS_PER_FRAME,
           "restir.splats_per_frame = " + std::to_string(splats_per_frame) + " is outside " + range(1u, RESTIR_MAX_SPLATS_PER_FRAME));
   require(layers <= LAYERS_MAX, "restir.layers = " + std::to_string(layers) + " is outside " + range(0u, LAYERS_MAX) + " (0 = auto)");

@@ -64,6 +64,9 @@ struct RestirOptions {
   // the way towards the colour of its initial paths, b shrinking below this where the window's
   // initial colours spread; 0: off.
   float colour_cv = 0.6f;
+  // k of b's shrinkage, colour_cv k / (k + S) (restir/colour_cv.h); 0: b = colour_cv everywhere (the
+  // unbiasedness tests use it to give the variate its full weight; an ablation).
+  float colour_cv_spread = 0.3f;
   bool temporal_filter = true;       // gather: the history pixel's centre surface must be like this pixel's
   // The confidence cap of a pixel where nothing moved since the previous frame (the camera, and the
   // instance its primary vertex or pixel centre lies on); 0: the moving cap. Chosen by measurement:
@@ -134,8 +137,12 @@ struct RestirOptions {
   uint32_t albedo_strata_used(const MethodSpec& method) const {
     return method.fixed_primary && albedo_strata > 1 ? albedo_strata : 0u;
   }
-  // Without reuse the pixel's estimate is its initial paths' (A = B): nothing to correct, no pass or memory.
-  float colour_cv_used(const MethodSpec& method) const { return method.fixed_primary && (temporal || spatial) ? colour_cv : 0.0f; }
+  // The colour control variate: gather and single-layer splat methods (restir-multilayer's deep
+  // domains would write over its per-pixel B and window marks). Without reuse the pixel's estimate
+  // is its initial paths' (A = B): nothing to correct, no pass or memory.
+  float colour_cv_used(const MethodSpec& method) const {
+    return (method.fixed_primary || (method.splatting && !method.layers)) && (temporal || spatial) ? colour_cv : 0.0f;
+  }
   // The radius the spatial pass uses for an image `height` pixels high.
   float spatial_radius_pixels(uint32_t height) const { return spatial_radius > 0.0f ? spatial_radius : default_spatial_radius(height); }
 

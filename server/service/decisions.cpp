@@ -185,9 +185,9 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
   out.push_back(make("colour_cv", asked(req.has_colour_cv(), format_float(req.colour_cv())), format_float(eff.colour_cv()),
                      method.reuse && options.colour_cv_used(method) > 0.0f,
                      !method.reuse ? no_reuse
-                     : !method.fixed_primary
-                         ? "the splat methods keep the camera sample in the sample; the control variate needs both estimates "
-                           "of one primary vertex"
+                     : method.layers
+                         ? "not for restir-multilayer: its deep domains run the initial and spatial passes over the same pixels and "
+                           "would write over the variate's per-pixel terms"
                      : eff.colour_cv() == 0.0f ? "off: each pixel's colour is that of the paths its reservoirs hold"
                      : !temporal && !eff.spatial_reuse()
                          ? "nothing to correct: without reuse the pixel's estimate is its initial paths'"

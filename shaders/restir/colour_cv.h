@@ -1,16 +1,14 @@
 // How far the colour control variate moves a pixel's colour (restir_shade.comp; docs/ARCHITECTURE.md,
 // "The colour control variate"): b = colour_cv k / (k + S), S the spread of the window's initial
 // estimates' colours about their common colour w. A shrinkage factor sigma_A^2 / (sigma_A^2 + sigma_B^2)
-// with B's colour variance measured by S and A's taken as k = COLOUR_CV_SPREAD_SCALE (chosen offline,
-// docs/BENCHMARKS.md, "The colour control variate"). Shared with the host's tests.
+// with B's colour variance measured by S and A's taken as k (RestirOptions::colour_cv_spread, 0.3:
+// chosen offline, docs/BENCHMARKS.md, "The colour control variate"). Shared with the host's tests.
 #ifndef STRATA_COLOUR_CV_H
 #define STRATA_COLOUR_CV_H
 #include "include/lang.h"
 #include "material/bsdf.h"
 
 STRATA_NAMESPACE_BEGIN
-
-CONST_DEF float COLOUR_CV_SPREAD_SCALE = 0.3f;
 
 // Sums over the window's initial estimates B_j, one pass: enough for w and for S.
 struct ColourWindow {
@@ -50,8 +48,9 @@ INLINE float colour_window_spread(ColourWindow c) {
   return max(s.r + s.g + s.b, 0.0f) * c.n / (y * y);
 }
 
-INLINE float colour_cv_b(float colour_cv, float spread) {
-  return colour_cv * COLOUR_CV_SPREAD_SCALE / (COLOUR_CV_SPREAD_SCALE + spread);
+// k = 0: no shrinkage, b = colour_cv everywhere.
+INLINE float colour_cv_b(float colour_cv, float k, float spread) {
+  return k > 0.0f ? colour_cv * k / (k + spread) : colour_cv;
 }
 
 STRATA_NAMESPACE_END

@@ -49,7 +49,11 @@ struct GpuRestirConstants {
   uint disocclusion_initial_candidates;  // splat methods: candidates of front-layer pixels no splat reached (restir-multilayer: disoccluded ones); 0: none (RestirOptions::disocclusion_candidates)
   uint silhouette_band;     // restir-multilayer: deep domains farther than this many pixels from a front-layer silhouette are dormant (0: off)
   uint reveal_lookahead;    // restir-multilayer: a deep domain whose motion is known samples when predicted to be uncovered within this many frames, else dormant (0: off)
-  float colour_cv;          // gather methods: b of the colour control variate (restir_shade.comp; 0: off)
+  float colour_cv;          // gather and splat methods: the colour control variate's largest b (restir_shade.comp; 0: off)
+  float colour_cv_spread;   // its k (restir/colour_cv.h; 0: b = colour_cv everywhere)
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 // Why a shift failed; counted per pass (COUNTER_SHIFT_* + reason).
@@ -68,7 +72,7 @@ STRATA_NAMESPACE_END
 #ifdef __cplusplus
 #include "include/frame_data.h"
 #include "restir/layer_data.h"
-static_assert(sizeof(strata::gpu::GpuRestirConstants) == 96);
+static_assert(sizeof(strata::gpu::GpuRestirConstants) == 112);
 // The multi-layer counters: one slot per layer.
 static_assert(strata::gpu::COUNTER_DOMAINS_ACTIVE + strata::gpu::LAYERS_MAX <= strata::gpu::COUNTER_DOMAINS_PROPAGATED);
 // The counter slots of shift failures hold one slot per reason: a new reason must not run into the

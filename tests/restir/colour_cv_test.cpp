@@ -1,8 +1,8 @@
-// The colour control variate of the gather methods (docs/ARCHITECTURE.md, "The colour control
-// variate"; restir_shade.comp): E = A + b (I - w lum^T) (B - A) with lum(w) = 1 keeps each pixel's
-// luminance and changes only its colour; the splat methods do not use it and hold no memory for it.
-// Its unbiasedness is tests/restir/restir_unbiased_test.cpp's (every gather case runs with the
-// default b; lod_cliff_gather is the two-coloured scene the variate is for).
+// The colour control variate of the gather and splat methods (docs/ARCHITECTURE.md, "The colour
+// control variate"; restir_shade.comp): E = A + b (I - w lum^T) (B - A) with lum(w) = 1 keeps each
+// pixel's luminance and changes only its colour; restir-multilayer does not use it and holds no
+// memory for it. Its unbiasedness is tests/restir/restir_unbiased_test.cpp's (every gather and splat
+// case runs with the default b, and the colour_cv_full_* cases with b = 1 everywhere).
 #include <cmath>
 #include <vector>
 
@@ -17,6 +17,7 @@ namespace strata::test {
 namespace {
 
 class ColourControlVariate : public GpuTest {};
+class ColourControlVariateKeepsLuminance : public GpuTest, public ::testing::WithParamInterface<std::string> {};
 
 struct CliffRun {
   std::vector<image::Image> frames;
@@ -42,9 +43,9 @@ CliffRun render_cliff(const std::string& method, float colour_cv) {
 
 float luminance(const float* rgb) { return gpu::luminance(glm::vec3(rgb[0], rgb[1], rgb[2])); }
 
-TEST_F(ColourControlVariate, KeepsEachPixelsLuminanceAndChangesItsColour) {
-  const CliffRun off = render_cliff("restir-gather", 0.0f);
-  const CliffRun on = render_cliff("restir-gather", 0.6f);
+TEST_P(ColourControlVariateKeepsLuminance, AndChangesEachPixelsColour) {
+  const CliffRun off = render_cliff(GetParam(), 0.0f);
+  const CliffRun on = render_cliff(GetParam(), 0.6f);
   size_t changed = 0, pixels = 0;
   for (size_t f = 0; f < off.frames.size(); ++f) {
     const auto& a = off.frames[f].rgba;
@@ -63,9 +64,15 @@ TEST_F(ColourControlVariate, KeepsEachPixelsLuminanceAndChangesItsColour) {
   EXPECT_GT(on.memory.at("contribution"), off.memory.at("contribution")) << "the initial estimates and window masks";
 }
 
-TEST_F(ColourControlVariate, SplatMethodsLeaveItOut) {
-  const CliffRun off = render_cliff("restir-splat", 0.0f);
-  const CliffRun on = render_cliff("restir-splat", 0.6f);
+INSTANTIATE_TEST_SUITE_P(Methods, ColourControlVariateKeepsLuminance, ::testing::Values("restir-gather", "restir-splat"),
+                         [](const ::testing::TestParamInfo<std::string>& p) { return p.param == "restir-gather" ? "gather" : "splat"; });
+
+// restir-multilayer's deep domains run the initial and spatial passes over the same pixels as the
+// front layer, so the variate's per-pixel B and window marks would be theirs too: it leaves the
+// variate out and holds no memory for it.
+TEST_F(ColourControlVariate, MultilayerLeavesItOut) {
+  const CliffRun off = render_cliff("restir-multilayer", 0.0f);
+  const CliffRun on = render_cliff("restir-multilayer", 0.6f);
   for (size_t f = 0; f < off.frames.size(); ++f) EXPECT_EQ(off.frames[f].rgba, on.frames[f].rgba) << "frame " << f;
   EXPECT_EQ(on.memory.at("contribution"), off.memory.at("contribution"));
 }
@@ -101,10 +108,11 @@ TEST(ColourCvSpread, MatchesItsDefinitionAndShrinksB) {
   EXPECT_NEAR(spreads[0], 0.0f, 1e-6f);
   EXPECT_GT(spreads[1], 1.0f);  // red, green and blue pixels: B's colour is mostly noise
   // b = colour_cv where the colours agree, less where they spread, never below 0.
-  EXPECT_NEAR(gpu::colour_cv_b(0.6f, spreads[0]), 0.6f, 1e-5f);
-  EXPECT_LT(gpu::colour_cv_b(0.6f, spreads[1]), 0.3f * 0.6f);
-  EXPECT_GT(gpu::colour_cv_b(0.6f, spreads[2]), gpu::colour_cv_b(0.6f, spreads[1]));
-  EXPECT_EQ(gpu::colour_cv_b(0.0f, spreads[1]), 0.0f);
+  EXPECT_NEAR(gpu::colour_cv_b(0.6f, 0.3f, spreads[0]), 0.6f, 1e-5f);
+  EXPECT_LT(gpu::colour_cv_b(0.6f, 0.3f, spreads[1]), 0.3f * 0.6f);
+  EXPECT_GT(gpu::colour_cv_b(0.6f, 0.3f, spreads[2]), gpu::colour_cv_b(0.6f, 0.3f, spreads[1]));
+  EXPECT_EQ(gpu::colour_cv_b(0.0f, 0.3f, spreads[1]), 0.0f);
+  EXPECT_EQ(gpu::colour_cv_b(0.6f, 0.0f, spreads[1]), 0.6f);  // k = 0: no shrinkage
 }
 
 }  // namespace

@@ -49,6 +49,8 @@ struct Case {
     return s.frame_state(f);
   };
   bool expect_bias = false;  // a biased variant the test must detect (the cases' power)
+  // The per-pixel statistic tested (RunningImage): r + g + b, or a chromatic one for the colour cases.
+  glm::vec3 channels = glm::vec3(1.0f);
   // A change to the built-in scene, and its name (part of the reference's key); "built": the edit
   // builds the whole scene (test_scenes.h) and `scene` names it.
   std::string variant;
@@ -91,7 +93,7 @@ image::Image sequence_mean(const scene::Scene& s, const Case& c, uint32_t seed) 
 }
 
 RunningImage render_reference(const scene::Scene& s, const Case& c, uint32_t runs, uint32_t spp) {
-  RunningImage out(c.size, c.size);
+  RunningImage out(c.size, c.size, c.channels);
   for (uint32_t r = 0; r < runs; ++r) {
     render::RenderSettings rs;
     rs.width = c.size;
@@ -120,13 +122,14 @@ RunningImage render_reference(const scene::Scene& s, const Case& c, uint32_t run
 struct ReferenceKey {
   std::string scene;  // name and variant
   uint32_t max_depth, size, runs, spp;
+  glm::vec3 channels;
   std::vector<std::pair<uint32_t, scene::FrameState>> scored;
   bool operator==(const ReferenceKey&) const = default;
 };
 
 const RunningImage& reference_of(const scene::Scene& s, const Case& c, uint32_t runs, uint32_t spp) {
   static std::deque<std::pair<ReferenceKey, RunningImage>> cache;  // stable references
-  ReferenceKey key{c.scene + "/" + c.variant, c.max_depth, c.size, runs, spp, {}};
+  ReferenceKey key{c.scene + "/" + c.variant, c.max_depth, c.size, runs, spp, c.channels, {}};
   for (uint32_t f = 1; f < c.frames; ++f)
     if (c.scored(f)) key.scored.emplace_back(f, c.state(s, f));
   for (const auto& [k, image] : cache)
@@ -141,7 +144,7 @@ TEST_P(RestirUnbiased, MatchesPathTracedReference) {
   const Case& c = GetParam();
   scene::Scene s = case_scene(c);
   const RunningImage& reference = reference_of(s, c, c.reference_runs, c.reference_spp);
-  RunningImage method(c.size, c.size);
+  RunningImage method(c.size, c.size, c.channels);
   for (uint32_t r = 0; r < c.runs; ++r) method.add(sequence_mean(s, c, 1000 + r));
   BiasReport report = compare_to_reference(method, reference, 4);
   std::printf("%s: %s\n", c.name.c_str(), report.describe().c_str());
@@ -333,6 +336,19 @@ std::vector<Case> cases() {
   };
   v.push_back({.name = "spatial_filter_cornell", .scene = "cornell", .options = filtered_spatial_only});
   v.push_back({.name = "spatial_filter_carousel", .scene = "carousel", .options = filtered_spatial_only});
+  // The colour control variate at full weight (b = 1 everywhere, no shrinkage), scored on r - g:
+  // the variate keeps each pixel's luminance, so a bias of it (a w or b that depends on the pixel's
+  // own paths; docs/BENCHMARKS.md, its break checks) is in the colour, which cornell's red and green
+  // walls give to every surface.
+  auto colour_cv_full = [](render::RestirOptions& o) {
+    o.colour_cv = 1.0f;
+    o.colour_cv_spread = 0.0f;
+  };
+  const glm::vec3 red_minus_green(1.0f, -1.0f, 0.0f);
+  v.push_back({.name = "colour_cv_full_gather", .scene = "cornell", .options = colour_cv_full, .state = moving_camera,
+               .channels = red_minus_green});
+  v.push_back({.name = "colour_cv_full_splat", .scene = "cornell", .method = "restir-splat", .options = colour_cv_full,
+               .state = moving_camera, .channels = red_minus_green});
   v.push_back({.name = "di_mode", .scene = "cornell", .method = "restir-di", .max_depth = 2,
                .options = [](render::RestirOptions& o) { o.light_candidates = 4; }});
   // restir-splat: the temporal reuse alone (spatial off) under each kind of motion, and

@@ -6,12 +6,14 @@
 
 namespace strata::test {
 
-RunningImage::RunningImage(uint32_t width, uint32_t height) : width_(width), height_(height) {}
+RunningImage::RunningImage(uint32_t width, uint32_t height, glm::vec3 channels)
+    : width_(width), height_(height), channels_(channels) {}
 
 void RunningImage::add(const image::Image& run) {
   if (run.width != width_ || run.height != height_) throw std::invalid_argument("run has a different size");
   std::vector<float> v(size_t(width_) * height_);
-  for (size_t i = 0; i < v.size(); ++i) v[i] = run.rgba[4 * i] + run.rgba[4 * i + 1] + run.rgba[4 * i + 2];
+  for (size_t i = 0; i < v.size(); ++i)
+    v[i] = channels_.r * run.rgba[4 * i] + channels_.g * run.rgba[4 * i + 1] + channels_.b * run.rgba[4 * i + 2];
   pixel_values_.push_back(std::move(v));
   ++runs_;
 }

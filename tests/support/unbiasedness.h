@@ -12,14 +12,18 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "image/image.h"
 
 namespace strata::test {
 
-// Per-pixel sums over independent runs of one method (luminance-free: all three channels).
+// Per-pixel sums over independent runs of one method of a per-pixel statistic: channels . rgb
+// (default r + g + b, luminance-free: all three channels; a chromatic one such as r - g tests
+// colour alone).
 class RunningImage {
  public:
-  RunningImage(uint32_t width, uint32_t height);
+  RunningImage(uint32_t width, uint32_t height, glm::vec3 channels = glm::vec3(1.0f));
   void add(const image::Image& run);
   uint32_t runs() const { return runs_; }
   uint32_t width() const { return width_; }
@@ -29,7 +33,8 @@ class RunningImage {
 
  private:
   uint32_t width_, height_, runs_ = 0;
-  // Per run, the mean of each 1x1 pixel (rgb summed) — kept so blocks of any size can be formed.
+  glm::vec3 channels_;
+  // Per run, each pixel's statistic — kept so blocks of any size can be formed.
   std::vector<std::vector<float>> pixel_values_;
 };
 

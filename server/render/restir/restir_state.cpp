@@ -35,6 +35,7 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
   c.direct_strata = o.direct_strata_used(spec);
   c.albedo_strata = o.albedo_strata_used(spec);
   c.colour_cv = o.colour_cv_used(spec);
+  c.colour_cv_spread = o.colour_cv_spread;
   c.suffix_mode = o.suffix == "fail"     ? gpu::SUFFIX_FAIL
                   : o.suffix == "cached" ? gpu::SUFFIX_CACHED
                   : o.suffix == "replay" ? gpu::SUFFIX_REPLAY
