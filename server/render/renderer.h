@@ -59,7 +59,7 @@ struct RestirOptions {
   // with G x G stratified camera samples of the albedo (restir_initial.comp, restir_shade.comp;
   // docs/ARCHITECTURE.md, "The albedo control variate"); 1: off.
   uint32_t albedo_strata = 2;
-  // The largest b of the colour control variate of the gather methods (restir_shade.comp;
+  // The largest b of the colour control variate of the gather and splat methods (restir_shade.comp;
   // docs/ARCHITECTURE.md, "The colour control variate"): the pixel keeps its luminance and takes b of
   // the way towards the colour of its initial paths, b shrinking below this where the window's
   // initial colours spread; 0: off.

@@ -34,7 +34,8 @@ uint pixel_index(uvec2 pixel) { return pixel.y * u_frame.width + pixel.x; }
 //   E = A + b (I - w lum^T) (B - A),   lum(w) = 1,
 // keeps A's luminance (lum^T (I - w lum^T) = 0) and moves its colour towards B's, whose paths are
 // all of this frame's NEE connections and emitter hits, where A's are mostly the one path its history
-// holds. E[B - A] = 0 (both estimate the pixel given its primary vertex), so E is unbiased for any
+// holds. E[B - A] = 0 (both estimate the pixel: given its primary vertex for the gather methods, its
+// integral for the splat methods, whose samples carry their camera samples), so E is unbiased for any
 // b and w independent of A and B: both come from the initial estimates B_j of the pixels in a
 // window around this one, leaving out this pixel and those whose reservoirs the spatial pass reused
 // here (their initial paths are in A). w is the colour of their sum; b shrinks from colour_cv where
