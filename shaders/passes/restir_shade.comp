@@ -56,7 +56,7 @@ vec3 colour_control_variate(uvec2 pixel, vec3 a, uint pixels, uint domains) {
   float y = luminance(window.sum);
   if (!(y > 0.0) || isinf(y)) return a;
   vec3 w = window.sum / y;
-  float b = colour_cv_b(u_restir.colour_cv, u_restir.colour_cv_spread, colour_window_spread(window));
+  float b = colour_cv_b(u_restir.colour_cv, u_restir.colour_cv_spread, colour_window_spread(window, w, y));
   vec3 d = own.rgb - a;
   vec3 e = a + b * (d - w * luminance(d));
   return any(isnan(e)) || any(isinf(e)) ? a : e;

@@ -38,12 +38,11 @@ INLINE void colour_window_add(INOUT(ColourWindow) c, vec3 b_j) {
   c.n += 1.0f;
 }
 
-// S = n sum_j |B_j - w lum(B_j)|^2 / lum(sum_j B_j)^2 with w = sum_j B_j / lum(sum_j B_j): the
-// colours' squared spread about w relative to the window's mean luminance (0 where every B_j has
-// w's colour). The square is expanded so that the sums above suffice. Needs lum(sum) > 0.
-INLINE float colour_window_spread(ColourWindow c) {
-  float y = luminance(c.sum);
-  vec3 w = c.sum / y;
+// S = n sum_j |B_j - w lum(B_j)|^2 / y^2 with y = lum(sum_j B_j) > 0 and w = sum_j B_j / y (the
+// caller's, which it needs for the variate too): the colours' squared spread about w relative to the
+// window's mean luminance (0 where every B_j has w's colour). The square is expanded so that the
+// sums above suffice.
+INLINE float colour_window_spread(ColourWindow c, vec3 w, float y) {
   vec3 s = c.sum_sq - 2.0f * w * c.sum_lb + w * w * c.sum_l2;
   return max(s.r + s.g + s.b, 0.0f) * c.n / (y * y);
 }

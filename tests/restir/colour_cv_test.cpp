@@ -101,7 +101,7 @@ TEST(ColourCvSpread, MatchesItsDefinitionAndShrinksB) {
       direct += glm::dot(d, d);
     }
     direct *= double(bs.size()) / (double(y) * y);
-    const float spread = gpu::colour_window_spread(c);
+    const float spread = gpu::colour_window_spread(c, c.sum / gpu::luminance(c.sum), gpu::luminance(c.sum));
     EXPECT_NEAR(spread, direct, 1e-4 * direct + 1e-6);
     spreads.push_back(spread);
   }
