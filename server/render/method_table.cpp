@@ -4,26 +4,6 @@
 
 namespace strata::render {
 
-const char* stage_name(StageKind kind) {
-  switch (kind) {
-    case StageKind::path_trace: return "path_trace";
-    case StageKind::primary: return "primary";
-    case StageKind::domain_init: return "domain_init";
-    case StageKind::initial: return "initial";
-    case StageKind::temporal_gather: return "temporal-gather";
-    case StageKind::temporal_splat: return "temporal-splat";
-    case StageKind::spatial: return "spatial";
-    case StageKind::shade: return "shade";
-  }
-  return "?";
-}
-
-std::vector<StageKind> MethodSpec::stages() const {
-  if (!reuse) return {StageKind::path_trace};
-  if (layers) return {StageKind::primary, StageKind::domain_init, StageKind::initial, temporal, StageKind::spatial, StageKind::shade};
-  return {StageKind::primary, StageKind::initial, temporal, StageKind::spatial, StageKind::shade};
-}
-
 const std::vector<MethodSpec>& method_table() {
   using S = StageKind;
   static const std::vector<MethodSpec> table = {

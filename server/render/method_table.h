@@ -9,19 +9,18 @@
 
 namespace strata::render {
 
-// The stages a frame can be composed of (docs/ARCHITECTURE.md, "The frame as stages").
+// The stages a frame can be composed of (docs/ARCHITECTURE.md, "The frame").
 enum class StageKind {
   path_trace,       // pt: the reference path tracer
   primary,          // the visibility buffer: the pixel-centre hit of every pixel
   domain_init,      // pixel-layer domains: propagation, representative hits, depth ranges, compaction (ML 4.3, 5)
   initial,          // canonical samples (N_init candidate paths per pixel)
   temporal_gather,  // the previous reservoir at the backprojected pixel (Lin 2022 section 7)
-  temporal_splat,   // previous reservoirs splatted forward (RS-main 4.1), four passes
+  splat_sort,       // previous reservoirs splatted forward and sorted by pixel (RS-supp 3.1), three passes
+  temporal_splat,   // the splats that landed, resampled with the canonical sample (RS-main 4.1)
   spatial,          // neighbours in a disk (Lin 2022 section 7)
   shade,            // the last resampling's estimate into the image
 };
-
-const char* stage_name(StageKind kind);
 
 struct MethodSpec {
   const char* name;
@@ -31,7 +30,7 @@ struct MethodSpec {
   bool splatting;            // temporal reuse by splatting: `splats_per_frame` applies
   bool backup;               // splatting with the backprojected backup sample (RS-main 4.2)
   bool layers;               // pixel-layer domains (the ML paper): `layers` applies
-  StageKind temporal;        // the temporal stage (reuse methods)
+  StageKind temporal;        // the temporal stage (reuse methods): temporal_gather or temporal_splat
   // A domain's primary vertex is fixed per frame (the visibility buffer's camera sample): shifts
   // start there instead of tracing the sample's camera ray (docs/ARCHITECTURE.md, "Domains and
   // their primary vertex"). Not for splatting, whose samples carry their primary hits.
@@ -46,7 +45,6 @@ struct MethodSpec {
   // the activation missed) take 8 paths, at little cost (docs/ARCHITECTURE.md, "Pixel layers");
   // 0 (initial_candidates) for the others, where every landing hole would pay for it.
   uint32_t disocclusion_initial_candidates;
-  std::vector<StageKind> stages() const;  // all stages, in frame order, before options switch any off
 };
 
 const std::vector<MethodSpec>& method_table();

@@ -12,64 +12,63 @@ namespace strata::render {
 RestirMethod::RestirMethod(const SharedResources& shared, const RenderSettings& settings, const MethodSpec& spec)
     : state_(shared, settings, spec) {
   const RestirOptions& o = settings.restir;
-  for (StageKind kind : spec.stages()) {
-    switch (kind) {
-      case StageKind::initial: stages_.push_back(make_initial_stage(state_)); break;
-      case StageKind::temporal_gather:
-        if (o.temporal) stages_.push_back(make_temporal_gather_stage(state_));
-        break;
-      case StageKind::temporal_splat:
-        if (o.temporal) stages_.push_back(make_temporal_splat_stage(state_));
-        break;
-      case StageKind::spatial:
-        if (o.spatial) stages_.push_back(make_spatial_stage(state_));
-        break;
-      case StageKind::shade: stages_.push_back(make_shade_stage(state_)); break;
-      case StageKind::primary:
-        if (state_.primary_stage) stages_.push_back(make_primary_stage(state_));
-        break;
-      case StageKind::domain_init:
-        if (state_.multilayer()) stages_.push_back(make_domain_init_stage(state_));
-        break;
-      case StageKind::path_trace: break;
-    }
-  }
+  const bool splat = spec.temporal == StageKind::temporal_splat;
+  if (state_.primary_stage) primary_ = make_primary_stage(state_);
+  if (state_.multilayer()) domain_init_ = make_domain_init_stage(state_);
+  if (state_.splat_sort()) splat_sort_ = std::make_unique<SplatSortStage>(state_);
+  initial_ = make_initial_stage(state_);
+  if (o.temporal) temporal_ = splat ? make_temporal_splat_stage(state_, *splat_sort_) : make_temporal_gather_stage(state_);
+  if (o.spatial) spatial_ = make_spatial_stage(state_);
+  shade_ = make_shade_stage(state_);
+  for (const Stage* s : {primary_.get(), domain_init_.get(), static_cast<Stage*>(splat_sort_.get()), initial_.get(), temporal_.get(),
+                         spatial_.get(), shade_.get()})
+    if (s) built_.push_back(s);
 }
 
 RestirMethod::~RestirMethod() = default;
 
 uint32_t RestirMethod::timed_passes() const {
   uint32_t n = 0;
-  for (const auto& s : stages_) n += s->timed_passes();
+  for (const Stage* s : built_) n += s->timed_passes();
   return n;
 }
 
-const Stage* RestirMethod::find(StageKind kind) const {
-  for (const auto& s : stages_)
-    if (s->kind() == kind) return s.get();
-  return nullptr;
-}
-
-// The frame: primary -> [domain_init] -> [splat sort] -> initial -> temporal -> spatial -> shade
-// (the splat stage's counting sort runs before the initial stage: Stage::record_before_initial). The stage that writes the
-// frame's final reservoirs into history.current is spatial; without it, the temporal output (work) is
-// copied there. Spatial reuse is on the front layer only (ML Sec. 5), so the deep layers' temporal
-// output is copied in either case.
+// One ReSTIR frame, top to bottom (docs/ARCHITECTURE.md, "The frame"). Each stage names what it
+// reads and writes; a stage that the method or the options leave out was not built and records
+// nothing. The resources are RestirState's (ping-pong ones as this frame's current / previous).
 void RestirMethod::record(VkCommandBuffer cmd, gpu::PassTimer& timer, const MethodFrame& f) {
   const StageFrame frame{cmd, timer, f, state_.shared.scene.parity()};
   last_parity_ = frame.parity;
-  const bool spatial = find(StageKind::spatial) != nullptr;
-  for (const auto& stage : stages_) {
-    if (stage->kind() == StageKind::initial)
-      for (const auto& early : stages_) early->record_before_initial(frame);
-    if (stage->kind() == StageKind::shade && (!spatial || state_.multilayer())) {
-      const VkDeviceSize front = spatial ? sizeof(gpu::PackedReservoir) * state_.pixels : 0;  // spatial wrote layer 0
-      VkBufferCopy region{front, front, state_.work.size() - front};
-      vkCmdCopyBuffer(cmd, state_.work.handle(), state_.history.current(frame.parity).handle(), 1, &region);
-      gpu::compute_barrier(cmd);
-    }
-    stage->record(frame);
-  }
+  // primary: one camera ray per pixel -> visibility.current.
+  if (primary_) primary_->record(frame);
+  // domain_init (restir-multilayer): visibility.current, the previous frame's domains ->
+  // domain_ranges, domain_list, domain_args (current).
+  if (domain_init_) domain_init_->record(frame);
+  // splat sort (splat methods): history.previous splatted forward -> splat lists, splat_offsets.
+  // Before initial, which reads splat_offsets: pixels no splat reached take more candidates.
+  if (splat_sort_) splat_sort_->record(frame);
+  // initial: visibility.current, splat_offsets -> work (canonical samples), contribution.
+  initial_->record(frame);
+  // temporal (gather: history.previous at the backprojected pixel; splat: the sort's lists) and
+  // work, visibility -> work.
+  if (temporal_) temporal_->record(frame);
+  // spatial: work, visibility.current -> history.current (the front layer: ML Sec. 5).
+  if (spatial_) spatial_->record(frame);
+  // commit: work -> history.current where spatial wrote nothing.
+  record_commit(frame);
+  // shade: contribution -> the image.
+  shade_->record(frame);
+}
+
+// The frame's final reservoirs go to history.current: spatial writes them for the front layer;
+// without spatial reuse every layer's temporal output (work) is copied, with it the deep layers'
+// (restir-multilayer: spatial reuse is on the front layer only).
+void RestirMethod::record_commit(const StageFrame& f) const {
+  if (spatial_ && !state_.multilayer()) return;
+  const VkDeviceSize front = spatial_ ? sizeof(gpu::PackedReservoir) * state_.pixels : 0;  // spatial wrote layer 0
+  VkBufferCopy region{front, front, state_.work.size() - front};
+  vkCmdCopyBuffer(f.cmd, state_.work.handle(), state_.history.current(f.parity).handle(), 1, &region);
+  gpu::compute_barrier(f.cmd);
 }
 
 std::optional<DomainMap> RestirMethod::domain_map() const {
@@ -79,24 +78,24 @@ std::optional<DomainMap> RestirMethod::domain_map() const {
 
 std::vector<PassDecision> RestirMethod::decisions() const {
   std::vector<PassDecision> d = {{"path_trace", false, std::string("method ") + state_.spec.name + " resamples instead"}};
-  auto add = [&](StageKind kind, const char* pass, const std::string& absent) {
-    if (const Stage* s = find(kind)) d.push_back(s->decision());
-    else d.push_back({pass, false, absent});
+  auto add = [&](const Stage* s, const char* pass, const std::string& absent) {
+    d.push_back(s ? s->decision() : PassDecision{pass, false, absent});
   };
-  add(StageKind::primary, "primary", "no stage reads primary hits (restir.temporal = false, restir.spatial = false)");
-  add(StageKind::domain_init, "domain_init",
+  add(primary_.get(), "primary", "no stage reads primary hits (restir.temporal = false, restir.spatial = false)");
+  add(domain_init_.get(), "domain_init",
       state_.spec.layers ? "one layer (" + state_.layers_reason + "): single-layer domains, one per pixel"
                          : "single-layer domains: one per pixel");
-  add(StageKind::initial, "initial", "");
-  add(state_.spec.temporal, "temporal", "disabled (restir.temporal = false)");
-  add(StageKind::spatial, "spatial", "disabled (restir.spatial = false)");
-  add(StageKind::shade, "shade", "");
+  if (splat_sort_) d.push_back(splat_sort_->decision());
+  add(initial_.get(), "initial", "");
+  add(temporal_.get(), "temporal", "disabled (restir.temporal = false)");
+  add(spatial_.get(), "spatial", "disabled (restir.spatial = false)");
+  add(shade_.get(), "shade", "");
   return d;
 }
 
 std::map<std::string, uint64_t> RestirMethod::memory_bytes() const {
   auto m = state_.memory_bytes();
-  for (const auto& s : stages_)
+  for (const Stage* s : built_)
     for (const auto& [group, bytes] : s->memory_bytes()) m[group] += bytes;
   return m;
 }
@@ -116,7 +115,7 @@ void RestirMethod::collect(std::span<const uint32_t> c, FrameStats& s) const {
   s.reuse["temporal.suffix_replayed"] = c[COUNTER_SUFFIX_REPLAYED];
   s.reuse["temporal.suffix_kept"] = c[COUNTER_SUFFIX_KEPT];
   s.reuse["temporal.replay_rays"] = uint64_t(c[COUNTER_RAYS_REPLAY]) + c[COUNTER_RAYS_REPLAY_RESAMPLE];
-  for (const auto& stage : stages_) stage->collect(c, s);
+  for (const Stage* stage : built_) stage->collect(c, s);
   s.reuse["scene.instances_changed"] = state_.shared.scene.changed_instances();  // since the previous frame
   s.reuse["spatial.shifts"] = c[COUNTER_SPATIAL_SHIFTS];
   s.reuse["spatial.selected"] = c[COUNTER_SPATIAL_SELECTED];

@@ -31,9 +31,6 @@ class Stage {
   // Timed passes it records per frame at most (the renderer's PassTimer is sized by the sum).
   virtual uint32_t timed_passes() const = 0;
   virtual void record(const StageFrame& f) = 0;
-  // Passes that must run before the initial stage: the splat stage's counting sort, whose landing
-  // counts tell the initial stage which pixels no splat reached (disocclusion_initial_candidates).
-  virtual void record_before_initial(const StageFrame& f) { (void)f; }
   // Whether it ran in the last frame, and which variant or why not (PassDecision of its pass name).
   virtual PassDecision decision() const = 0;
   virtual std::map<std::string, uint64_t> memory_bytes() const { return {}; }

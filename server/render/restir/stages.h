@@ -8,6 +8,9 @@
 
 namespace strata::render {
 
+struct RestirState;
+class SplatSortStage;
+
 // primary: the visibility buffer (pixel-centre hits) -> visibility.current.
 std::unique_ptr<Stage> make_primary_stage(const RestirState& state);
 // domain_init (restir-multilayer): this frame's pixel-layer domains: propagation, representative
@@ -18,9 +21,10 @@ std::unique_ptr<Stage> make_initial_stage(const RestirState& state);
 // temporal-gather: history.previous at the backprojected pixel, shifted and resampled with the
 // canonical sample (restir_temporal); work, visibility -> work.
 std::unique_ptr<Stage> make_temporal_gather_stage(const RestirState& state);
-// temporal-splat (and with the method's `backup`, temporal-splat-backup): history.previous
-// splatted forward through a counting sort (four passes, RS-supp 3.1); work, visibility -> work.
-std::unique_ptr<Stage> make_temporal_splat_stage(const RestirState& state);
+// temporal-splat (and with the method's `backup`, temporal-splat-backup): the splats that the splat
+// sort (render/restir/splat_sort.h) landed in each pixel, resampled with its canonical sample
+// (RS-main 4.1, 4.2); the sort's lists, work, visibility -> work.
+std::unique_ptr<Stage> make_temporal_splat_stage(const RestirState& state, const SplatSortStage& sort);
 // spatial: neighbours in a disk (restir_spatial); work -> history.current.
 std::unique_ptr<Stage> make_spatial_stage(const RestirState& state);
 // shade: the last resampling's estimate and the directly seen emission into the image (restir_shade); contribution -> accum.
