@@ -74,5 +74,5 @@ write("carousel_objects_only_16.json", [{"animation_frame": i, "camera": carouse
 write("carousel_camera_only_16.json", [{"animation_frame": 0, "camera": carousel_camera(i)} for i in range(16)])
 
 # The ring's motion alone over 80 frames, under the camera at the pan's midpoint (eye (0, 1.6, 6)):
-# the ML paper's Carousel, where only objects move (docs/BENCHMARKS.md, "Multi-layer ... Sixth part").
+# the ML paper's Carousel, where only objects move (docs/BENCHMARKS.md, "Multi-layer reservoir splatting").
 write("carousel_objects_only_80.json", [{"animation_frame": i, "camera": carousel_camera(59.5)} for i in range(80)])

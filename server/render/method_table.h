@@ -55,11 +55,12 @@ std::vector<std::string> available_methods();
 std::string method_names();
 // One line per method, "name: summary", for --help.
 std::string method_help();
-// The method a session, `stratad render` and `strata stream` use when none is named (issue 13 point
-// 5 made it the default when it won at equal time against a pt whose light selection wasted half its
-// samples; against the fixed pt it wins on cornell only: k_default_method_reason, measured in
-// docs/BENCHMARKS.md, "Paired spatial neighbours"). Whether pt should be the default again is the
-// steering side's call (issue 13).
+// The method a session, `stratad render` and `strata stream` use when none is named. It became the
+// default when it won at equal time against a pt whose light selection wasted half its samples;
+// against the fixed pt it wins where the light is hard to find and on cornell, and loses where pt's
+// light samples find the light (k_default_method_reason; docs/BENCHMARKS.md, "restir-gather against
+// pt"). It stays the default because ReSTIR is what the service is built for; whether pt should be
+// the default again depends on the scenes its users render, and is left open.
 inline constexpr const char* k_default_method = "restir-gather";
 // Why, as the session's `method` decision says it when the client named none.
 inline constexpr const char* k_default_method_reason =

@@ -1,5 +1,5 @@
-// A reuse method's error falls as its history builds, or holds; it never climbs (issue: error rose
-// from frame 0 to frame 5 on carousel). Over carousel's default animation (objects and camera
+// A reuse method's error falls as its history builds, or holds; it never climbs (as it once did on
+// carousel, from frame 0 to frame 5). Over carousel's default animation (objects and camera
 // move), per seed and frame, the method's MAPE against a converged reference is divided by that
 // of 1-spp pt on the same frame, which takes out how hard each frame's content is (MAPE, not
 // RelMSE: at 32x32 single fireflies decide a frame's RelMSE). The test fails when this ratio's
