@@ -98,7 +98,7 @@ TEST_F(LodMapping, OneChartMapsUniquelyAndOnlyLodScenesPayForIt) {
 // A suffix that leaves a mapped reconnection vertex keeps its direction fixed to the object across
 // the switch (path_space.glsl, object_fixed_direction), so on lod-cliff the sun-lit bounces replay
 // onto the sun again. Kept in x_k's surface frame instead, the other level's shading normal turns it
-// past the 0.6-degree sun, and more than half of the replays failed (BENCHMARKS, "Third part").
+// past the 0.6-degree sun, and more than half of the replays failed (docs/BENCHMARKS.md, "Why temporal reuse does not pay on lod-cliff").
 TEST_F(LodMapping, SuffixesReplayAcrossTheSwitch) {
   const Outcome cliff = render_switch("lod-cliff", "restir-gather", [](render::RestirOptions&) {});
   const uint64_t replayed = cliff.reuse.at("temporal.suffix_replayed");
@@ -111,7 +111,7 @@ TEST_F(LodMapping, SuffixesReplayAcrossTheSwitch) {
 
 // A pixel whose surface switched level keeps the spatial boost of pixels without history
 // (disocclusion_spatial_neighbors, restir_spatial.comp) although tau carried its history across:
-// lod-cliff's mapped history is worth less than it costs there (BENCHMARKS, "Fourth part"). At the
+// lod-cliff's mapped history is worth less than it costs there (docs/BENCHMARKS.md, "The switched pixels keep the spatial boost"). At the
 // switch the terrain's pixels then draw 6 neighbours, not 2: with the rule dropped the default run
 // equals the run without boost up to the few pixels that have no history at all.
 TEST_F(LodMapping, SwitchedPixelsKeepTheSpatialBoost) {
