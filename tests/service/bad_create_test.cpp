@@ -91,8 +91,8 @@ TEST_F(BadCreateTest, EveryBadRequestGetsItsStatusAndMessage) {
   add("max_depth over the limit", [](auto& r) { r.mutable_options()->set_max_depth(33); }, invalid, "options.max_depth = 33");
   add("NaN confidence cap", [&](auto& r) { r.mutable_options()->set_confidence_cap(nan); }, invalid, "options.confidence_cap = nan");
   add("layers out of range", [](auto& r) { r.mutable_options()->set_layers(9); }, invalid, "options.layers = 9 is outside [0, 8]");
-  add("unknown shift", [](auto& r) { r.mutable_options()->set_shift(static_cast<v1::Shift>(7)); }, invalid,
-      "options.shift = 7 is not one of");
+  add("unknown shift", [](auto& r) { r.mutable_options()->mutable_experimental()->set_shift(static_cast<v1::Shift>(7)); }, invalid,
+      "options.experimental.shift = 7 is not one of");
   add("negative spatial radius", [](auto& r) { r.mutable_options()->set_spatial_radius(-1.0f); }, invalid,
       "options.spatial_radius = -1 is outside [1, 256] pixels");
   add("unknown encoding", [](auto& r) { r.clear_encodings(); r.add_encodings(static_cast<v1::ImageEncoding>(9)); }, invalid,

@@ -45,8 +45,8 @@ TEST_F(RestirTest, GatherSessionReportsItsOptionsAndStreamsReuseStatistics) {
   EXPECT_EQ(s.method(), "restir-gather");
   // Effective options: the renderer's defaults (docs/ARCHITECTURE.md, Methods) and what was asked.
   EXPECT_EQ(s.options().spp(), 1u);
-  EXPECT_EQ(s.options().shift(), v1::SHIFT_HYBRID);
-  EXPECT_EQ(s.options().mis(), v1::MIS_PAIRWISE);
+  EXPECT_EQ(s.options().experimental().shift(), v1::SHIFT_HYBRID);
+  EXPECT_EQ(s.options().experimental().mis(), v1::MIS_PAIRWISE);
   EXPECT_FLOAT_EQ(s.options().confidence_cap(), 2.0f);  // restir-gather's (method_table.cpp)
   EXPECT_FLOAT_EQ(s.options().still_confidence_cap(), 8.0f);
   EXPECT_EQ(s.options().spatial_neighbors(), 2u);
@@ -58,10 +58,10 @@ TEST_F(RestirTest, GatherSessionReportsItsOptionsAndStreamsReuseStatistics) {
   EXPECT_EQ(s.options().light_candidates(), 2u);
   EXPECT_TRUE(s.options().temporal_reuse());
   EXPECT_TRUE(s.options().spatial_reuse());
-  EXPECT_TRUE(s.options().unbiased());
+  EXPECT_TRUE(s.options().experimental().unbiased());
   EXPECT_EQ(s.options().disocclusion_spatial_neighbors(), 6u);
   EXPECT_EQ(s.options().direct_strata(), 3u);
-  EXPECT_TRUE(s.options().temporal_filter());
+  EXPECT_TRUE(s.options().experimental().temporal_filter());
   for (const char* name : k_restir_options) {
     const v1::Decision* d = decision(s, name);
     ASSERT_NE(d, nullptr) << name;
@@ -296,10 +296,10 @@ TEST_F(RestirTest, BadRestirOptionsAreInvalidArgumentNamingTheField) {
       "options.still_confidence_cap = 0.5 is outside [1, 1000] (0 = confidence_cap)");
   add("still_confidence_cap NaN", "restir-gather", [](auto& o) { o.set_still_confidence_cap(std::nanf("")); },
       "options.still_confidence_cap = nan is outside [1, 1000]");
-  add("shift not an enum value", "restir-gather", [](auto& o) { o.set_shift(static_cast<v1::Shift>(9)); },
-      "options.shift = 9 is not one of SHIFT_RECONNECTION, SHIFT_HYBRID");
-  add("mis not an enum value", "restir-gather", [](auto& o) { o.set_mis(static_cast<v1::Mis>(5)); },
-      "options.mis = 5 is not one of MIS_BALANCE, MIS_PAIRWISE");
+  add("shift not an enum value", "restir-gather", [](auto& o) { o.mutable_experimental()->set_shift(static_cast<v1::Shift>(9)); },
+      "options.experimental.shift = 9 is not one of SHIFT_RECONNECTION, SHIFT_HYBRID");
+  add("mis not an enum value", "restir-gather", [](auto& o) { o.mutable_experimental()->set_mis(static_cast<v1::Mis>(5)); },
+      "options.experimental.mis = 5 is not one of MIS_BALANCE, MIS_PAIRWISE");
   add("restir-gather with spp 4", "restir-gather", [](auto& o) { o.set_spp(4); }, "options.spp = 4");
   add("restir-di with spp 2", "restir-di", [](auto& o) { o.set_spp(2); }, "options.spp = 2");
   add("pt with spatial_neighbors 9", "pt", [](auto& o) { o.set_spatial_neighbors(9); },

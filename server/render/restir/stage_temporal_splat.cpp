@@ -14,6 +14,7 @@
 // runs over all domains, and a second resampling dispatch runs this frame's list.
 #include "include/bindings.h"
 #include "include/frame_data.h"
+#include "options/option_table.h"
 #include "render/frame_constants.h"
 #include "render/restir/restir_state.h"
 #include "render/restir/stages.h"
@@ -122,7 +123,7 @@ class TemporalSplatStage : public Stage {
     if (!ran_) return {"temporal", false, "no previous frame yet"};
     return {"temporal", true,
             std::string(state_.spec.backup ? "splat with backup sample" : "splat") + " (counting sort; reprojection + " +
-                state_.settings.restir.shift + " shift, reverse-splat MIS, bilinear confidence" +
+                options::choice_name("shift", state_.settings.restir.shift) + " shift, reverse-splat MIS, bilinear confidence" +
                 (partitions_ > 1 ? "; " + std::to_string(partitions_) + " time partitions over the shutter)" : ")") + "; " +
                 suffix_decision(state_.settings.restir.suffix, moved_, changed_)};
   }
