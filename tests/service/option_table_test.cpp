@@ -2,7 +2,7 @@
 // RenderOptions and ExperimentalOptions fields, the flags of `stratad render` and `strata
 // stream/eval/loadtest`, docs/OPTIONS.md; and a mid-stream change of every option, which either
 // reaches the device from that frame on (the frame names it) or is reported as not applying.
-// GPU cases run on lavapipe at 16 x 16.
+// GPU cases run on lavapipe at 32 x 32.
 #include <algorithm>
 #include <fstream>
 #include <map>
@@ -13,6 +13,7 @@
 #include "options/option_proto.h"
 #include "process.h"
 #include "render/method_table.h"
+#include "scene/scene_io.h"
 #include "service/options.h"
 
 namespace strata::test {
@@ -132,7 +133,14 @@ TEST(OptionTable, OptionsMdIsGeneratedFromTheTable) {
 // ---------------------------------------------------------------------------------------------
 // Mid-stream changes on the device.
 
-using OptionChangeTest = ServiceTest;
+class OptionChangeTest : public ServiceTest {
+ protected:
+  void check_every_change(options::Group group);
+};
+
+// A stream whose first frame compiles pipelines no earlier case needed (layer_mode uniform: the layer
+// stepping variants) takes minutes on lavapipe on a loaded 2-core machine.
+constexpr std::chrono::seconds k_change_deadline = 900s;
 
 const v1::Decision* change(const v1::Frame& f, const std::string& name) {
   for (const auto& d : f.option_changes())
@@ -159,7 +167,7 @@ TEST_F(OptionChangeTest, LayersChangeMidStreamRendersOneLayerFromThatFrame) {
   req.set_method("restir-multilayer");
   req.mutable_options()->set_layers(3);
   const v1::Session s = create_ok(stub(), req);
-  StreamClient c(stub());
+  StreamClient c(stub(), k_change_deadline);
   std::vector<v1::Frame> frames;
   for (uint32_t i = 0; i < 6; ++i) {
     v1::FrameInput in = frame_input(i + 1, i == 0 ? s.name() : "", i);
@@ -208,26 +216,54 @@ struct Rendered {
   image::Image last;
 };
 
-// Three frames of `method` on `scene` with the animation running; the first input changes `option`
-// to `value` (when given): the renderer created with the session is re-created before frame 0.
-Rendered render_with(v1::RenderService::Stub& stub, const std::string& method, const std::string& scene,
+// How the three frames move, so that an option's effect can show.
+struct Motion {
+  bool lod_switches = false;  // every instance with LoD levels switches between levels 0 and 1 each frame
+  bool shutter = false;       // the scene's animated camera with the shutter open (motion blur)
+};
+
+// Three frames of `method` on `scene` (32 x 32) with the animation running; the first input changes
+// `option` to `value` (when given): the renderer created with the session is re-created before frame 0.
+Rendered render_with(v1::RenderService::Stub& stub, const std::string& method, const std::string& scene, Motion motion,
                      const options::OptionSpec* option, double value) {
-  auto req = session_request(scene, 16, 16, 1, 7, {v1::IMAGE_ENCODING_RAW_RGBA16F, v1::IMAGE_ENCODING_PNG_PREVIEW});
+  auto req = session_request(scene, 32, 32, 1, 7, {v1::IMAGE_ENCODING_RAW_RGBA16F, v1::IMAGE_ENCODING_PNG_PREVIEW});
   req.clear_options();
   req.set_method(method);
-  if (render::method_spec(method).layers) req.mutable_options()->set_layers(3);  // not auto: 16 x 16 may measure one
+  if (render::method_spec(method).layers) req.mutable_options()->set_layers(3);  // not auto: a small image may measure one
   const v1::Session s = create_ok(stub, req);
+  const scene::Scene model = scene::builtin_scene(scene);
   Rendered r;
-  StreamClient c(stub);
+  StreamClient c(stub, k_change_deadline);
   for (uint32_t i = 0; i < 3; ++i) {
     v1::FrameInput in = frame_input(i + 1, i == 0 ? s.name() : "", 4 * i);
     if (option && i == 0) options::set_value(*in.mutable_options(), *option, value);
+    if (motion.lod_switches)
+      for (const auto& instance : s.analysis().instances())
+        if (instance.lod_levels() > 1) {
+          auto* l = in.add_lod_changes();
+          l->set_instance_id(instance.id());
+          l->set_level(i % 2);
+        }
+    if (motion.shutter) {
+      const scene::Camera cam = model.frame_state(4 * i).camera;
+      auto* out = in.mutable_camera();
+      out->mutable_position()->set_x(cam.position.x);
+      out->mutable_position()->set_y(cam.position.y);
+      out->mutable_position()->set_z(cam.position.z + 0.2f * float(i));
+      out->mutable_orientation()->set_w(cam.orientation.w);
+      out->mutable_orientation()->set_x(cam.orientation.x);
+      out->mutable_orientation()->set_y(cam.orientation.y);
+      out->mutable_orientation()->set_z(cam.orientation.z);
+      out->set_vertical_fov(cam.yfov);
+      out->set_shutter(1.0f);
+    }
     EXPECT_TRUE(c.send(in));
     auto f = c.read();
     if (!f) break;
     r.frames.push_back(*f);
   }
-  EXPECT_TRUE(c.close().ok());
+  const grpc::Status st = c.close();
+  EXPECT_TRUE(st.ok()) << st.error_message();
   EXPECT_EQ(r.frames.size(), 3u);
   if (!r.frames.empty()) r.last = frame_image(r.frames.back());
   EXPECT_TRUE(delete_session(stub, s.name()).ok());
@@ -238,18 +274,22 @@ Rendered render_with(v1::RenderService::Stub& stub, const std::string& method, c
 // frame reports the change with what it did, and what the device renders differs from the same
 // stream without the change (a change the renderer kept out would leave the frames bit-identical).
 // Where a method it does not apply to gets the change, the frame reports it as not applying and
-// nothing is re-created.
-TEST_F(OptionChangeTest, EveryOptionChangeReachesTheDeviceOrIsReportedAsNotApplying) {
+// nothing is re-created (OptionsOfOtherMethodsAreReportedAsNotApplying).
+void OptionChangeTest::check_every_change(options::Group group) {
   // The method and scene where each option shows (the first that it applies to, unless named).
   const std::map<std::string, std::pair<std::string, std::string>> where = {
-      {"spp", {"pt", "carousel"}}, {"max_depth", {"pt", "carousel"}}, {"lod_mapping", {"restir-gather", "lod-cliff"}},  {"lod_matching", {"restir-splat", "overlap-uv"}},
+      {"spp", {"pt", "carousel"}}, {"max_depth", {"pt", "carousel"}}, {"still_confidence_cap", {"restir-gather", "cornell"}},
+      {"lod_mapping", {"restir-gather", "lod-cliff"}},  {"lod_matching", {"restir-splat", "overlap-uv"}},
       {"lod_vertices", {"restir-gather", "lod-cliff"}}, {"albedo_strata", {"restir-gather", "chess"}},
   };
   // The value it changes to, where the row's other end of the range would show nothing.
-  const std::map<std::string, std::string> values = {{"suffix", "fail"}, {"view_layer", "1"}};
+  const std::map<std::string, std::string> values = {{"suffix", "fail"},        {"view_layer", "1"},      {"layers", "1"},
+                                                     {"silhouette_band", "0"},  {"reveal_lookahead", "0"}, {"still_confidence_cap", "1"}};
+  const std::set<std::string> lod = {"lod_mapping", "lod_matching", "lod_vertices"};
   const std::vector<std::string> methods = {"restir-gather", "restir-splat", "restir-multilayer", "pt"};
   std::map<std::string, Rendered> controls;
   for (const auto& o : options::option_table()) {
+    if (o.group != group) continue;
     SCOPED_TRACE(o.name);
     std::string method, scene = "carousel";
     if (auto it = where.find(o.name); it != where.end()) {
@@ -262,16 +302,17 @@ TEST_F(OptionChangeTest, EveryOptionChangeReachesTheDeviceOrIsReportedAsNotApply
         }
     }
     ASSERT_FALSE(method.empty());
-    const std::string key = method + "/" + scene;
-    if (!controls.count(key)) controls[key] = render_with(stub(), method, scene, nullptr, 0.0);
+    const Motion motion{.lod_switches = lod.count(o.name) > 0, .shutter = std::string(o.name) == "splats_per_frame"};
+    const std::string key = method + "/" + scene + (motion.lod_switches ? "/lod" : "") + (motion.shutter ? "/shutter" : "");
+    if (!controls.count(key)) controls[key] = render_with(stub(), method, scene, motion, nullptr, 0.0);
     const Rendered& control = controls[key];
     v1::RenderOptions requested;
     if (render::method_spec(method).layers) requested.set_layers(3);
-    const v1::RenderOptions defaults = service::with_defaults(requested, render::method_spec(method), config_.limits, 16);
+    const v1::RenderOptions defaults = service::with_defaults(requested, render::method_spec(method), config_.limits, 32);
     const auto named = values.find(o.name);
     const double value = named != values.end() ? *options::parse_value(o, named->second)
                                                : other_value(o, options::get_value(defaults, o));
-    const Rendered changed = render_with(stub(), method, scene, &o, value);
+    const Rendered changed = render_with(stub(), method, scene, motion, &o, value);
     ASSERT_EQ(changed.frames.size(), 3u);
     const v1::Frame& first = changed.frames[0];
     const v1::Decision* d = change(first, o.name);
@@ -281,15 +322,33 @@ TEST_F(OptionChangeTest, EveryOptionChangeReachesTheDeviceOrIsReportedAsNotApply
       EXPECT_NE(first.history_reset_reason().find(std::string(o.name) + " changed from"), std::string::npos)
           << first.history_reset_reason();
     }
-    // On the device: the image, or for exposure the PNG preview.
+    // On the device: the image (for exposure the PNG preview), else the frames' reuse counters or
+    // pass reasons (what the passes did: dormant domains, time partitions, ...).
     const auto png = [](const v1::Frame& f) { return find_image(f, v1::IMAGE_ENCODING_PNG_PREVIEW)->data(); };
+    const auto trace = [](const Rendered& r) {
+      std::string t;
+      for (const auto& f : r.frames) {
+        for (const auto& p : f.statistics().passes()) t += p.pass() + (p.ran() ? " ran: " : " out: ") + p.reason() + "\n";
+        for (const auto& [k, v] : std::map<std::string, uint64_t>(f.statistics().reuse().counters().begin(),
+                                                                   f.statistics().reuse().counters().end()))
+          t += k + " = " + std::to_string(v) + "\n";
+      }
+      return t;
+    };
     const bool differs = o.on_change == options::OnChange::in_place ? png(changed.frames.back()) != png(control.frames.back())
-                                                                     : changed.last.rgba != control.last.rgba;
+                                                                     : changed.last.rgba != control.last.rgba ||
+                                                                           trace(changed) != trace(control);
     EXPECT_TRUE(differs) << method << " on " << scene << ": " << o.name << " = " << options::value_text(o, value)
                          << " renders what the default does";
     EXPECT_TRUE(changed.frames[1].option_changes().empty()) << "the change is reported once";
   }
+}
 
+TEST_F(OptionChangeTest, EveryUserOptionChangeReachesTheDevice) { check_every_change(options::Group::user); }
+
+TEST_F(OptionChangeTest, EveryExperimentalOptionChangeReachesTheDevice) { check_every_change(options::Group::experimental); }
+
+TEST_F(OptionChangeTest, OptionsOfOtherMethodsAreReportedAsNotApplying) {
   // On pt, the restir-* options are reported as not applying, and nothing is re-created.
   auto req = session_request("cornell", 16, 16);
   const v1::Session s = create_ok(stub(), req);
