@@ -342,10 +342,11 @@ std::string range_error(const OptionSpec& o, double v, const std::string& field,
   std::string text = o.kind == Kind::count ? std::to_string(int64_t(v)) : number(v);
   std::string s = field + " = " + text + " is outside [" + number(o.lo) + ", " + number(hi) + "]";
   if (o.unit) s += std::string(" ") + o.unit;
-  if (o.zero) s += std::string(" (0 = ") + o.zero + ")";
-  else if (restir && o.restir_zero) s += std::string(" (0 = ") + o.restir_zero + ")";
-  if (o.limit) s += std::string(" (") + o.limit + ")";
-  return s;
+  std::string notes;
+  if (o.zero) notes = std::string("0 = ") + o.zero;
+  else if (restir && o.restir_zero) notes = std::string("0 = ") + o.restir_zero;
+  if (o.limit) notes += (notes.empty() ? "limit " : "; limit ") + std::string(o.limit);
+  return notes.empty() ? s : s + " (" + notes + ")";
 }
 
 }  // namespace strata::options

@@ -263,7 +263,7 @@ TEST_F(RestirTest, BadRestirOptionsAreInvalidArgumentNamingTheField) {
     cases.push_back({std::move(what), std::move(r), std::move(message)});
   };
   add("spatial_neighbors 9", "restir-gather", [](auto& o) { o.set_spatial_neighbors(9); },
-      "options.spatial_neighbors = 9 is outside [0, 8]");
+      "options.spatial_neighbors = 9 is outside [0, 8] (limit RESTIR_MAX_SPATIAL_NEIGHBORS)");
   add("spatial_radius 0", "restir-gather", [](auto& o) { o.set_spatial_radius(0.0f); },
       "options.spatial_radius = 0 is outside [1, 256]");
   add("spatial_radius 300", "restir-gather", [](auto& o) { o.set_spatial_radius(300.0f); },
@@ -277,13 +277,13 @@ TEST_F(RestirTest, BadRestirOptionsAreInvalidArgumentNamingTheField) {
   add("light_candidates 0", "restir-di", [](auto& o) { o.set_light_candidates(0); },
       "options.light_candidates = 0 is outside [1, 32]");
   add("disocclusion_spatial_neighbors 9", "restir-gather", [](auto& o) { o.set_disocclusion_spatial_neighbors(9); },
-      "options.disocclusion_spatial_neighbors = 9 is outside [0, 8] (0 = spatial_neighbors)");
+      "options.disocclusion_spatial_neighbors = 9 is outside [0, 8] (0 = spatial_neighbors; limit RESTIR_MAX_SPATIAL_NEIGHBORS)");
   add("hole_fill_radius 9", "restir-multilayer", [](auto& o) { o.set_hole_fill_radius(9); },
-      "options.hole_fill_radius = 9 is outside [0, 8] (0 = off)");
+      "options.hole_fill_radius = 9 is outside [0, 8] pixels (0 = off; limit RESTIR_MAX_HOLE_FILL_RADIUS)");
   add("silhouette_band 33", "restir-multilayer", [](auto& o) { o.set_silhouette_band(33); },
-      "options.silhouette_band = 33 is outside [0, 32] (0 = off)");
+      "options.silhouette_band = 33 is outside [0, 32] pixels (0 = off; limit RESTIR_MAX_SILHOUETTE_BAND)");
   add("reveal_lookahead 17", "restir-multilayer", [](auto& o) { o.set_reveal_lookahead(17); },
-      "options.reveal_lookahead = 17 is outside [0, 16] (0 = off)");
+      "options.reveal_lookahead = 17 is outside [0, 16] frames (0 = off; limit RESTIR_MAX_REVEAL_LOOKAHEAD)");
   add("direct_strata 0", "restir-gather", [](auto& o) { o.set_direct_strata(0); },
       "options.direct_strata = 0 is outside [1, 8]");
   add("direct_strata 9", "restir-splat", [](auto& o) { o.set_direct_strata(9); },
@@ -293,7 +293,7 @@ TEST_F(RestirTest, BadRestirOptionsAreInvalidArgumentNamingTheField) {
   add("confidence_cap 1001", "restir-gather", [](auto& o) { o.set_confidence_cap(1001.0f); },
       "options.confidence_cap = 1001 is outside [1, 1000]");
   add("still_confidence_cap 0.5", "restir-gather", [](auto& o) { o.set_still_confidence_cap(0.5f); },
-      "options.still_confidence_cap = 0.5 is outside [1, 1000] (0 = confidence_cap)");
+      "options.still_confidence_cap = 0.5 is outside [1, 1000] (0 = confidence_cap; limit RESTIR_MAX_CONFIDENCE_CAP)");
   add("still_confidence_cap NaN", "restir-gather", [](auto& o) { o.set_still_confidence_cap(std::nanf("")); },
       "options.still_confidence_cap = nan is outside [1, 1000]");
   add("shift not an enum value", "restir-gather", [](auto& o) { o.mutable_experimental()->set_shift(static_cast<v1::Shift>(9)); },
