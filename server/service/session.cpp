@@ -4,6 +4,7 @@
 #include <glm/glm.hpp>
 
 #include "include/frame_data.h"
+#include "options/option_proto.h"
 #include "scene/shutter.h"
 #include "service/input_checks.h"
 #include "service/scene_analysis.h"
@@ -152,7 +153,7 @@ void Session::apply_locked(const PendingInput& input, std::string& reset_reason,
     const std::string what = std::string(c.option->name) + " changed from " + c.from + " to " + c.to;
     v1::Decision d;
     d.set_name(c.option->name);
-    d.set_requested(c.to);
+    d.set_requested(options::has_value(input.options, *c.option) ? c.to : "");  // empty: it followed the image height
     d.set_value(c.to);
     d.set_applies(c.applies);
     if (!c.applies) {
