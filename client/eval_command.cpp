@@ -359,7 +359,7 @@ Runner add_eval_command(CLI::App& app) {
   auto* splats = cmd->add_option("--splats-per-frame", a->splats_value,
                                  "RenderOptions.splats_per_frame of the methods' sessions, 1..64 (restir-splat*: K splats "
                                  "over the shutter; default: the server's)");
-  add_restir_flags(cmd, a->restir);
+  add_restir_flags(cmd, a->restir, /*eval=*/true);
   cmd->add_option("--width", a->width, "image width")->capture_default_str();
   cmd->add_option("--height", a->height, "image height")->capture_default_str();
   cmd->add_option("--reference-spp", a->reference_spp, "samples per pixel of each reference")->capture_default_str();

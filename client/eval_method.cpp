@@ -21,7 +21,7 @@ EvalMethod parse_eval_method(const std::string& entry, const RestirFlags& common
   }
   if (line.empty()) return m;
   CLI::App parser("the flags of one --methods entry");
-  add_restir_flags(&parser, m.restir);
+  add_restir_flags(&parser, m.restir, /*eval=*/true);
   try {
     parser.parse(line, false);
   } catch (const CLI::ParseError& e) {

@@ -36,6 +36,7 @@ v1::CreateSessionRequest session_request(const LoadtestOptions& o) {
   req.set_method(o.method);
   req.set_seed(o.seed);
   req.mutable_options()->set_spp(o.spp);
+  set_restir_options(o.restir, *req.mutable_options());
   for (auto e : parse_encoding_list(o.encodings)) req.add_encodings(e);
   return req;
 }
@@ -169,6 +170,7 @@ Runner add_loadtest_command(CLI::App& app) {
   cmd->add_option("--seed", o->seed, "random seed")->capture_default_str();
   cmd->add_option("--encodings", o->encodings, "images to request: exr, raw, png, domain (the domain map of restir-multilayer; comma-separated)")->capture_default_str();
   cmd->add_option("--camera-path", o->camera_path, "JSON script of FrameInputs, replayed in a loop (see client/camera_path.h)");
+  add_restir_flags(cmd, o->restir);
   return [o] { return run_loadtest(*o); };
 }
 

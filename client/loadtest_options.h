@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "restir_flags.h"
 #include "strata/v1/render.pb.h"
 
 namespace strata::client {
@@ -35,6 +36,7 @@ struct LoadtestOptions {
   std::string scene = "cornell";
   std::string method = "pt";
   uint32_t width = 64, height = 64, spp = 1, seed = 0;
+  RestirFlags restir;  // the option table's flags that were given (restir_flags.h)
   std::string encodings = "raw";
   std::string camera_path;
 

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   add(&strata::cli::add_list_scenes_command);
   add(&strata::cli::add_bench_command);
   add(&strata::cli::add_serve_command);
+  add(&strata::cli::add_options_command);
   CLI11_PARSE(app, argc, argv);
   try {
     for (auto* sub : app.get_subcommands()) return runners.at(sub)();

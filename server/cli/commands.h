@@ -12,5 +12,6 @@ Runner add_export_scene_command(CLI::App& app);
 Runner add_list_scenes_command(CLI::App& app);
 Runner add_bench_command(CLI::App& app);
 Runner add_serve_command(CLI::App& app);
+Runner add_options_command(CLI::App& app);
 
 }  // namespace strata::cli

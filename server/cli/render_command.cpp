@@ -13,6 +13,7 @@
 #include "cli/commands.h"
 #include "gpu/context.h"
 #include "image/image.h"
+#include "options/option_flags.h"
 #include "render/method_table.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"
@@ -31,6 +32,7 @@ struct RenderArgs {
   bool validation = false;
   bool domain_map = false;
   render::RenderSettings settings;
+  options::OptionFlags flags;  // the option table's flags that were given
 };
 
 std::string frame_name(uint32_t f) {
@@ -39,8 +41,9 @@ std::string frame_name(uint32_t f) {
   return buf;
 }
 
-int run_render(const RenderArgs& a) {
+int run_render(RenderArgs a) {
   namespace fs = std::filesystem;
+  options::set_options(a.flags, a.settings.restir);
   a.settings.validate();
   if (a.domain_map && !render::method_spec(a.settings.method).layers)
     throw std::invalid_argument("--domain-map: method " + a.settings.method + " keeps no pixel layers (restir-multilayer does)");
@@ -101,66 +104,8 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_option("--max-depth", a->settings.max_depth, "maximum path segments")->capture_default_str();
   cmd->add_option("--seed", a->settings.seed, "random seed")->capture_default_str();
   cmd->add_option("--out", a->out, "output directory")->capture_default_str();
-  auto& r = a->settings.restir;
-  cmd->add_option("--shift", r.shift, "ReSTIR shift: reconnection | hybrid")->capture_default_str();
-  cmd->add_option("--mis", r.mis, "ReSTIR spatial MIS: balance | pairwise")->capture_default_str();
-  cmd->add_option("--suffix", r.suffix, "ReSTIR path suffixes when the scene changed: auto | replay | cached (biased) | fail")
-      ->capture_default_str();
-  cmd->add_option("--confidence-cap", r.confidence_cap,
-                  "ReSTIR confidence cap of the temporal history where something moved (0: the method's, 2; restir-di 4)")
-      ->capture_default_str();
-  cmd->add_option("--still-confidence-cap", r.still_confidence_cap,
-                  "ReSTIR: confidence cap where nothing moved, the camera and every instance (0: --confidence-cap)")
-      ->capture_default_str();
-  cmd->add_option("--spatial-neighbors", r.spatial_neighbors, "ReSTIR spatial neighbours (0..8)")->capture_default_str();
-  cmd->add_option("--spatial-radius", r.spatial_radius, "ReSTIR spatial radius in pixels (0: 2.5% of the height, at least 4 px)")->capture_default_str();
-  cmd->add_option("--initial-candidates", r.initial_candidates, "ReSTIR candidate paths per pixel")->capture_default_str();
-  cmd->add_option("--light-candidates", r.light_candidates, "ReSTIR NEE samples per vertex")->capture_default_str();
-  cmd->add_option("--disocclusion-spatial-neighbors", r.disocclusion_spatial_neighbors,
-                  "ReSTIR spatial neighbours of pixels without history (0..8; 0: --spatial-neighbors)")
-      ->capture_default_str();
-  cmd->add_option("--disocclusion-initial-candidates", r.disocclusion_initial_candidates,
-                  "ReSTIR splat: candidate paths of pixels no splat reached, restir-multilayer: of disoccluded ones (0..64; 0: the method's, 8 for restir-multilayer, else --initial-candidates; = --initial-candidates: off)")
-      ->capture_default_str();
-  cmd->add_option("--direct-strata", r.direct_strata, "ReSTIR: G x G camera samples at edges of directly seen emission (1..8)")
-      ->capture_default_str();
-  cmd->add_option("--albedo-strata", r.albedo_strata,
-                  "ReSTIR gather: G x G camera samples of the albedo control variate at albedo edges (1..8; 1: off)")
-      ->capture_default_str();
-  cmd->add_option("--colour-cv", r.colour_cv,
-                  "ReSTIR gather and splat: largest b of the colour control variate, the share of the way from the pixel's colour to its initial paths' (0..1; 0: off)")
-      ->capture_default_str();
-  cmd->add_option("--colour-cv-spread", r.colour_cv_spread,
-                  "ReSTIR: k of the colour control variate's b = colour_cv k / (k + S), S the spread of the window's initial colours (0..1000; 0: b = colour_cv everywhere)")
-      ->capture_default_str();
-  cmd->add_option("--layers", r.layers, "restir-multilayer: pixel layers (1..8; 0: auto, from the scene's depth complexity)")
-      ->capture_default_str();
-  cmd->add_option("--silhouette-band", r.silhouette_band,
-                  "restir-multilayer: deep domains farther than this many pixels from a front-layer silhouette are dormant (0..32; 0: off)")
-      ->capture_default_str();
-  cmd->add_option("--reveal-lookahead", r.reveal_lookahead,
-                  "restir-multilayer: deep domains sample when predicted to be uncovered within this many frames, else dormant (0..16; 0: off)")
-      ->capture_default_str();
-  cmd->add_option("--deep-backup", r.deep_backup,
-                  "restir-multilayer: a disoccluded pixel takes the previous deep domain that held its hit as a backup sample (true | false)")
-      ->capture_default_str();
-  cmd->add_option("--hole-fill-radius", r.hole_fill_radius, "restir-multilayer: hole filling radius in pixels (0..8; 0: off)")
-      ->capture_default_str();
-  cmd->add_option("--layer-mode", r.layer_mode, "restir-multilayer: active | uniform | no-depth-ranges (ML validation variants)")
-      ->capture_default_str();
-  cmd->add_option("--view-layer", r.view_layer,
-                  "restir-multilayer: write layer i's domain estimates instead of the image (0: the image; 0 where inactive)")
-      ->capture_default_str();
-  cmd->add_option("--lod-mapping", r.lod_mapping, "ReSTIR: auto | off | uv (LoD-aware reuse, the LOD paper's vertex mapping)")
-      ->capture_default_str();
-  cmd->add_option("--lod-matching", r.lod_matching, "ReSTIR, --lod-mapping uv: greedy matching of UVs several points share (LOD Alg. 1)")
-      ->capture_default_str();
-  cmd->add_option("--lod-vertices", r.lod_vertices, "ReSTIR, --lod-mapping uv: both | primary | reconnection (LOD Fig. 5)")
-      ->capture_default_str();
-  cmd->add_flag("!--no-temporal-filter", r.temporal_filter, "ReSTIR gather: history from any previous pixel (no surface test)");
-  cmd->add_flag("!--no-temporal", r.temporal, "ReSTIR: no temporal reuse");
-  cmd->add_flag("!--no-spatial", r.spatial, "ReSTIR: no spatial reuse");
-  cmd->add_flag("!--biased", r.unbiased, "ReSTIR: the DI tutorial's confidence-weighted temporal merge (biased)");
+  // The options of the table (options/option_table.h) but spp, max_depth and exposure, above and below.
+  options::add_option_flags(cmd, a->flags, {"spp", "max_depth", "exposure"});
   cmd->add_option("--device", a->device, "Vulkan device name substring (default: $STRATA_DEVICE, else lavapipe)");
   cmd->add_option("--exposure", a->exposure, "PNG preview exposure in stops")->capture_default_str();
   cmd->add_flag("--accumulate", a->accumulate, "accumulate all frames into one reference image of --first-frame");

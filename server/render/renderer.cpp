@@ -1,8 +1,6 @@
 #include "render/renderer.h"
 
 #include <algorithm>
-#include <cmath>
-#include <cstdio>
 
 #include "render/frame_constants.h"
 #include "render/method_table.h"
@@ -14,13 +12,6 @@ namespace {
 
 void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
-}
-
-// 1000 as "1000", 1.5 as "1.5".
-std::string format_limit(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
 }
 
 }  // namespace
@@ -47,64 +38,6 @@ void RenderSettings::validate() const {
   }
 }
 
-void RestirOptions::validate() const {
-  using namespace gpu;  // the ranges of shaders/restir/restir_limits.h
-  auto range = [](auto lo, auto hi) { return "[" + format_limit(lo) + ", " + format_limit(hi) + "]"; };
-  require(shift == "reconnection" || shift == "hybrid", "restir.shift = '" + shift + "' is not one of: reconnection, hybrid");
-  require(mis == "balance" || mis == "pairwise", "restir.mis = '" + mis + "' is not one of: balance, pairwise");
-  require(suffix == "auto" || suffix == "replay" || suffix == "cached" || suffix == "fail",
-          "restir.suffix = '" + suffix + "' is not one of: auto, replay, cached, fail");
-  require(std::isfinite(confidence_cap) &&
-              (confidence_cap == 0.0f || (confidence_cap >= RESTIR_MIN_CONFIDENCE_CAP && confidence_cap <= RESTIR_MAX_CONFIDENCE_CAP)),
-          "restir.confidence_cap = " + std::to_string(confidence_cap) + " is outside " +
-              range(RESTIR_MIN_CONFIDENCE_CAP, RESTIR_MAX_CONFIDENCE_CAP) + " (0 = the method's)");
-  require(std::isfinite(still_confidence_cap) &&
-              (still_confidence_cap == 0.0f || (still_confidence_cap >= RESTIR_MIN_CONFIDENCE_CAP && still_confidence_cap <= RESTIR_MAX_CONFIDENCE_CAP)),
-          "restir.still_confidence_cap = " + std::to_string(still_confidence_cap) + " is outside " +
-              range(RESTIR_MIN_CONFIDENCE_CAP, RESTIR_MAX_CONFIDENCE_CAP) + " (0 = confidence_cap)");
-  require(spatial_neighbors <= RESTIR_MAX_SPATIAL_NEIGHBORS,
-          "restir.spatial_neighbors = " + std::to_string(spatial_neighbors) + " is outside " + range(0u, RESTIR_MAX_SPATIAL_NEIGHBORS));
-  require(spatial_radius == 0.0f ||
-              (std::isfinite(spatial_radius) && spatial_radius >= RESTIR_MIN_SPATIAL_RADIUS && spatial_radius <= RESTIR_MAX_SPATIAL_RADIUS),
-          "restir.spatial_radius = " + std::to_string(spatial_radius) + " is outside " +
-              range(RESTIR_MIN_SPATIAL_RADIUS, RESTIR_MAX_SPATIAL_RADIUS) + " pixels (0 = automatic)");
-  require(initial_candidates >= 1 && initial_candidates <= RESTIR_MAX_INITIAL_CANDIDATES,
-          "restir.initial_candidates = " + std::to_string(initial_candidates) + " is outside " +
-              range(1u, RESTIR_MAX_INITIAL_CANDIDATES));
-  require(light_candidates >= 1 && light_candidates <= RESTIR_MAX_LIGHT_CANDIDATES,
-          "restir.light_candidates = " + std::to_string(light_candidates) + " is outside " + range(1u, RESTIR_MAX_LIGHT_CANDIDATES));
-  require(disocclusion_spatial_neighbors <= RESTIR_MAX_SPATIAL_NEIGHBORS,
-          "restir.disocclusion_spatial_neighbors = " + std::to_string(disocclusion_spatial_neighbors) + " is outside " +
-              range(0u, RESTIR_MAX_SPATIAL_NEIGHBORS));
-  require(direct_strata >= 1 && direct_strata <= RESTIR_MAX_DIRECT_STRATA,
-          "restir.direct_strata = " + std::to_string(direct_strata) + " is outside " + range(1u, RESTIR_MAX_DIRECT_STRATA));
-  require(albedo_strata >= 1 && albedo_strata <= RESTIR_MAX_DIRECT_STRATA,
-          "restir.albedo_strata = " + std::to_string(albedo_strata) + " is outside " + range(1u, RESTIR_MAX_DIRECT_STRATA));
-  require(std::isfinite(colour_cv) && colour_cv >= 0.0f && colour_cv <= 1.0f,
-          "restir.colour_cv = " + std::to_string(colour_cv) + " is outside [0, 1] (0 = off)");
-  require(std::isfinite(colour_cv_spread) && colour_cv_spread >= 0.0f && colour_cv_spread <= 1000.0f,
-          "restir.colour_cv_spread = " + std::to_string(colour_cv_spread) + " is outside [0, 1000] (0 = b is colour_cv everywhere)");
-  require(splats_per_frame >= 1 && splats_per_frame <= RESTIR_MAX_SPLATS_PER_FRAME,
-          "restir.splats_per_frame = " + std::to_string(splats_per_frame) + " is outside " + range(1u, RESTIR_MAX_SPLATS_PER_FRAME));
-  require(layers <= LAYERS_MAX, "restir.layers = " + std::to_string(layers) + " is outside " + range(0u, LAYERS_MAX) + " (0 = auto)");
-  require(hole_fill_radius <= RESTIR_MAX_HOLE_FILL_RADIUS,
-          "restir.hole_fill_radius = " + std::to_string(hole_fill_radius) + " is outside " + range(0u, RESTIR_MAX_HOLE_FILL_RADIUS));
-  require(silhouette_band <= RESTIR_MAX_SILHOUETTE_BAND,
-          "restir.silhouette_band = " + std::to_string(silhouette_band) + " is outside " + range(0u, RESTIR_MAX_SILHOUETTE_BAND) + " (0 = off)");
-  require(reveal_lookahead <= RESTIR_MAX_REVEAL_LOOKAHEAD,
-          "restir.reveal_lookahead = " + std::to_string(reveal_lookahead) + " is outside " + range(0u, RESTIR_MAX_REVEAL_LOOKAHEAD) + " (0 = off)");
-  require(layer_mode == "active" || layer_mode == "uniform" || layer_mode == "no-depth-ranges",
-          "restir.layer_mode = '" + layer_mode + "' is not one of: active, uniform, no-depth-ranges");
-  require(disocclusion_initial_candidates <= RESTIR_MAX_INITIAL_CANDIDATES,
-          "restir.disocclusion_initial_candidates = " + std::to_string(disocclusion_initial_candidates) + " is outside " +
-              range(0u, RESTIR_MAX_INITIAL_CANDIDATES) + " (0 = initial_candidates)");
-  require(lod_mapping == "auto" || lod_mapping == "off" || lod_mapping == "uv",
-          "restir.lod_mapping = '" + lod_mapping + "' is not one of: auto, off, uv");
-  require(lod_vertices == "both" || lod_vertices == "primary" || lod_vertices == "reconnection",
-          "restir.lod_vertices = '" + lod_vertices + "' is not one of: both, primary, reconnection");
-  require(view_layer < LAYERS_MAX, "restir.view_layer = " + std::to_string(view_layer) + " is outside " + range(0u, LAYERS_MAX - 1));
-}
-
 std::optional<DomainMap> Renderer::domain_map() const { return method_->domain_map(); }
 
 Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSettings settings)
@@ -113,11 +46,9 @@ Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSet
   // Temporal reuse needs the previous frame's TLAS and instances on the device; `pt` keeps none.
   scene_ = std::make_unique<GpuScene>(ctx, scene, /*keep_history=*/method_spec(settings_.method).reuse);
   const RestirOptions& ro = settings_.restir;
-  scene_->set_lod_mapping({.uv = ro.lod_mapping != "off",
+  scene_->set_lod_mapping({.uv = ro.lod_mapping != LodMapping::off,
                            .matching = ro.lod_matching,
-                           .vertices = ro.lod_vertices == "primary"        ? gpu::LOD_VERTEX_PRIMARY
-                                       : ro.lod_vertices == "reconnection" ? gpu::LOD_VERTEX_RECONNECTION
-                                                                           : gpu::LOD_VERTEX_PRIMARY | gpu::LOD_VERTEX_RECONNECTION});
+                           .vertices = static_cast<uint32_t>(ro.lod_vertices)});
   size_t pixels = size_t(settings_.width) * settings_.height;
   constants_ = gpu::Buffer(ctx, sizeof(gpu::GpuFrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "frame constants");
   counters_ = gpu::Buffer(ctx, sizeof(uint32_t) * gpu::COUNTER_COUNT, gpu::k_storage_usage, gpu::Memory::Device, "counters");

@@ -1,8 +1,11 @@
 // Session decisions: for the method (its method-table row), every option and the path tracer's
-// features, what was requested, what the session uses, whether it applies, and why.
+// features, what was requested, what the session uses, whether it applies, and why. Every row of the
+// option table has a decision; one whose scope leaves out the method does not apply, with the table's
+// reason (options::not_applying_reason), whatever the reasons below say.
 #include <algorithm>
 #include <optional>
 
+#include "options/option_proto.h"
 #include "restir/domain.h"
 #include "service/input_checks.h"
 #include "service/options.h"
@@ -43,6 +46,11 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
   const std::string m = method.name;
   const std::string no_reuse = "method " + m + " has no reuse; used by the restir-* methods";
   auto asked = [](bool has, const std::string& value) { return has ? value : std::string(); };
+  // What the client asked for option `name`, as the table writes it; empty when not asked.
+  auto asked_for = [&](const char* name) {
+    const options::OptionSpec& row = *options::find_option(name);
+    return options::has_value(req, row) ? options::value_text(row, options::get_value(req, row)) : std::string();
+  };
 
   const bool di = method.direct_lighting;
   out.push_back(make("method", requested_method, m, true,
@@ -72,28 +80,28 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                      method.reuse ? (eff.spatial_reuse() ? "the neighbours' reservoirs (spatial_neighbors within spatial_radius)"
                                                          : "requested off: no spatial pass")
                                   : no_reuse));
-  out.push_back(make("shift", asked(req.has_shift(), shift_name(req.shift())), shift_name(eff.shift()),
+  out.push_back(make("shift", asked_for("shift"), option_text(eff, "shift"),
                      temporal || spatial,
                      !method.reuse ? no_reuse
                      : temporal || spatial ? "shift mapping between pixels' paths"
                                            : "temporal and spatial reuse are off: no shifts"));
-  out.push_back(make("suffix", asked(req.has_suffix(), suffix_name(req.suffix())), suffix_name(eff.suffix()), temporal,
+  out.push_back(make("suffix", asked_for("suffix"), option_text(eff, "suffix"), temporal,
                      !method.reuse ? no_reuse
                      : !temporal   ? no_temporal
-                     : eff.suffix() == v1::SUFFIX_CACHED
+                     : eff.experimental().suffix() == v1::SUFFIX_CACHED
                          ? "a changed scene keeps each path's stored radiance after its reconnection vertex (biased)"
-                     : eff.suffix() == v1::SUFFIX_FAIL
+                     : eff.experimental().suffix() == v1::SUFFIX_FAIL
                          ? "a changed scene refuses temporal shifts of paths with a suffix (temporal.stale)"
-                     : eff.suffix() == v1::SUFFIX_AUTO
+                     : eff.experimental().suffix() == v1::SUFFIX_AUTO
                          ? "replay: a path's suffix is traced again in the other frame whenever an instance changed "
                            "(whether it met the changed instance is not known without tracing it); kept when nothing changed"
                          : "a path's suffix is traced again in the other frame whenever an instance changed"));
-  out.push_back(make("mis", asked(req.has_mis(), mis_name(req.mis())), mis_name(eff.mis()), spatial,
+  out.push_back(make("mis", asked_for("mis"), option_text(eff, "mis"), spatial,
                      !method.reuse ? no_reuse : spatial ? "MIS weights of spatial resampling" : no_spatial));
-  out.push_back(make("unbiased", asked(req.has_unbiased(), on_off(req.unbiased())), on_off(eff.unbiased()), temporal,
+  out.push_back(make("unbiased", asked(req.experimental().has_unbiased(), on_off(req.experimental().unbiased())), on_off(eff.experimental().unbiased()), temporal,
                      !method.reuse ? no_reuse
                      : !temporal   ? no_temporal
-                     : eff.unbiased() ? "MIS weights for the temporal pair"
+                     : eff.experimental().unbiased() ? "MIS weights for the temporal pair"
                                       : "confidence-only temporal weights, as in the ReSTIR DI tutorial (biased)"));
   out.push_back(make("confidence_cap", asked(req.has_confidence_cap(), format_float(req.confidence_cap())),
                      format_float(eff.confidence_cap()), temporal,
@@ -195,19 +203,19 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                                " of the way to the colour of its initial paths (less where their colours spread); the colour comes from the initial estimates of a " +
                                u(2 * gpu::COLOUR_CV_RADIUS + 1) + " x " + u(2 * gpu::COLOUR_CV_RADIUS + 1) +
                                " window, less the pixels whose reservoirs it reused (docs/ARCHITECTURE.md)"));
-  out.push_back(make("temporal_filter", asked(req.has_temporal_filter(), on_off(req.temporal_filter())),
-                     on_off(eff.temporal_filter()), temporal && !method.splatting,
+  out.push_back(make("temporal_filter", asked(req.experimental().has_temporal_filter(), on_off(req.experimental().temporal_filter())),
+                     on_off(eff.experimental().temporal_filter()), temporal && !method.splatting,
                      !method.reuse ? no_reuse
                      : !temporal   ? no_temporal
                      : method.splatting ? "method " + m + " splats its history forward; the filter is for backprojection"
-                     : eff.temporal_filter() ? "history only from a previous pixel whose centre surface is like this pixel's "
+                     : eff.experimental().temporal_filter() ? "history only from a previous pixel whose centre surface is like this pixel's "
                                                "(normal, distance, material kind): a disoccluded pixel starts afresh"
                                              : "history from whatever the previous pixel saw"));
 
   // LoD mapping: decided from the scene when auto.
   {
     const auto mode = eff.lod_mapping();
-    const std::string requested = asked(req.has_lod_mapping(), lod_mapping_name(req.lod_mapping()));
+    const std::string requested = asked_for("lod_mapping");
     const std::string groups = std::to_string(scene.lod_groups()) + " instance(s) with LoD levels";
     // The LOD paper's vertex mapping tau, inside the surface resolver: a UV-space structure per LoD
     // group, built only for scenes that have one and methods that keep history.
@@ -218,13 +226,13 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                          : mode == v1::LOD_MAPPING_OFF   ? "a LoD switch refuses the temporal shifts of the switched instance's points (the scene has " + groups + ")"
                                                          : "points map across LoD switches through the shared UV parametrisation (LOD paper; the scene has " + groups + ")";
     out.push_back(make("lod_mapping", requested, uv ? "uv" : "off", uv, reason));
-    out.push_back(make("lod_matching", asked(req.has_lod_matching(), req.lod_matching() ? "true" : "false"),
-                       eff.lod_matching() ? "true" : "false", uv,
+    out.push_back(make("lod_matching", asked_for("lod_matching"),
+                       eff.experimental().lod_matching() ? "true" : "false", uv,
                        !uv ? "used by lod_mapping uv"
-                       : eff.lod_matching() ? "UVs that several points share are matched by world distance (LOD Alg. 1)"
+                       : eff.experimental().lod_matching() ? "UVs that several points share are matched by world distance (LOD Alg. 1)"
                                             : "UVs that several points share refuse the shift (LOD Fig. 6 without matching)"));
-    out.push_back(make("lod_vertices", asked(req.has_lod_vertices(), lod_vertices_name(req.lod_vertices())),
-                       lod_vertices_name(eff.lod_vertices()), uv,
+    out.push_back(make("lod_vertices", asked_for("lod_vertices"),
+                       option_text(eff, "lod_vertices"), uv,
                        !uv ? "used by lod_mapping uv" : "the path vertices tau maps (LOD Fig. 5 ablation)"));
   }
   {
@@ -243,17 +251,17 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
     out.push_back(make("layers", requested, value, method.layers, reason));
     const std::string not_layers = "method " + m + " has no pixel layers; used by restir-multilayer";
     out.push_back(make("hole_fill_radius", asked(req.has_hole_fill_radius(), u(req.hole_fill_radius())), u(eff.hole_fill_radius()),
-                       method.layers && eff.layer_mode() != v1::LAYER_MODE_UNIFORM,
+                       method.layers && eff.experimental().layer_mode() != v1::LAYER_MODE_UNIFORM,
                        !method.layers ? not_layers
-                       : eff.layer_mode() == v1::LAYER_MODE_UNIFORM
+                       : eff.experimental().layer_mode() == v1::LAYER_MODE_UNIFORM
                            ? "layer_mode uniform keeps every layer active: nothing to fill"
                            : "deep domains within this radius of a propagated one sample too, without propagating (ML 4.3; the paper uses 3)"));
     // The two rules that leave activated deep domains dormant (tracked, not sampled): layer_mode active only.
     auto dormancy = [&](const std::string& name, bool has, uint32_t req_value, uint32_t eff_value, const std::string& off,
                         const std::string& on) {
-      out.push_back(make(name, asked(has, u(req_value)), u(eff_value), method.layers && eff.layer_mode() == v1::LAYER_MODE_ACTIVE && eff_value > 0,
+      out.push_back(make(name, asked(has, u(req_value)), u(eff_value), method.layers && eff.experimental().layer_mode() == v1::LAYER_MODE_ACTIVE && eff_value > 0,
                          !method.layers                                 ? not_layers
-                         : eff.layer_mode() != v1::LAYER_MODE_ACTIVE ? "only layer_mode active has dormant domains (the validation variants are the ML paper's)"
+                         : eff.experimental().layer_mode() != v1::LAYER_MODE_ACTIVE ? "only layer_mode active has dormant domains (the validation variants are the ML paper's)"
                          : eff_value == 0                               ? off
                                                                         : on));
     };
@@ -267,20 +275,20 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
              "a deep domain samples when, moving against the front layer as over the last frame, it is uncovered within this many "
              "frames; otherwise it is tracked but samples nothing (not in the ML paper; docs/BENCHMARKS.md: a fifth of the silhouette "
              "band's deep domains at its coverage and error under carousel's pan)");
-    const bool deep_backup_used = method.layers && eff.layer_mode() == v1::LAYER_MODE_ACTIVE && temporal && eff.deep_backup();
-    out.push_back(make("deep_backup", asked(req.has_deep_backup(), req.deep_backup() ? "true" : "false"),
-                       eff.deep_backup() ? "true" : "false", deep_backup_used,
+    const bool deep_backup_used = method.layers && eff.experimental().layer_mode() == v1::LAYER_MODE_ACTIVE && temporal && eff.experimental().deep_backup();
+    out.push_back(make("deep_backup", asked_for("deep_backup"),
+                       eff.experimental().deep_backup() ? "true" : "false", deep_backup_used,
                        !method.layers ? not_layers
-                       : eff.layer_mode() != v1::LAYER_MODE_ACTIVE
+                       : eff.experimental().layer_mode() != v1::LAYER_MODE_ACTIVE
                            ? "only layer_mode active (the validation variants are the ML paper's: splats only)"
                        : !temporal          ? no_temporal
-                       : !eff.deep_backup() ? "off: a disoccluded pixel has history only where a deep splat lands (ML 4.2)"
+                       : !eff.experimental().deep_backup() ? "off: a disoccluded pixel has history only where a deep splat lands (ML 4.2)"
                                             : "a disoccluded pixel whose hit an active previous deep domain held takes that domain's "
                                               "reservoir as a backup sample (RS-main 4.2 across layers; not in the ML paper)"));
-    out.push_back(make("layer_mode", asked(req.has_layer_mode(), layer_mode_name(req.layer_mode())), layer_mode_name(eff.layer_mode()),
+    out.push_back(make("layer_mode", asked_for("layer_mode"), option_text(eff, "layer_mode"),
                        method.layers,
                        !method.layers ? not_layers
-                       : eff.layer_mode() == v1::LAYER_MODE_ACTIVE
+                       : eff.experimental().layer_mode() == v1::LAYER_MODE_ACTIVE
                            ? "active domains propagated by representative hits, depth ranges (ML)"
                            : "a validation variant of the ML paper (Fig. 5, Table 1)"));
   }
@@ -309,6 +317,21 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
   out.push_back(make("thin_lens", "", scene.thin_lens() ? "on" : "off", true,
                      scene.thin_lens() ? "the scene camera has an aperture; FrameInput.camera.aperture = 0 turns it off"
                                        : "the scene camera is a pinhole; FrameInput.camera.aperture > 0 turns it on"));
+
+  // The table's verdict on the method: an option outside its scope never applies; an option without
+  // a decision above gets one.
+  for (const auto& row : options::option_table()) {
+    auto it = std::find_if(out.begin(), out.end(), [&](const v1::Decision& d) { return d.name() == row.name; });
+    if (it == out.end()) {
+      out.push_back(make(row.name, asked_for(row.name), options::value_text(row, options::get_value(eff, row)), true,
+                         row.help));
+      it = out.end() - 1;
+    }
+    if (!options::applies(row, method)) {
+      it->set_applies(false);
+      it->set_reason(options::not_applying_reason(row, method));
+    }
+  }
   return out;
 }
 

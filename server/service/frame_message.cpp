@@ -76,6 +76,7 @@ v1::Frame make_frame_message(const RenderedFrame& f) {
   m.set_inputs_coalesced(f.coalesced);
   m.set_history_reset(f.history_reset);
   m.set_history_reset_reason(f.history_reset_reason);
+  for (const auto& d : f.option_changes) *m.add_option_changes() = d;
   m.mutable_timing()->set_queued_ms(f.queued_ms);
   m.mutable_timing()->set_render_ms(f.render_ms);
   m.mutable_timing()->set_encode_ms(encode_ms);

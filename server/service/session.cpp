@@ -4,6 +4,7 @@
 #include <glm/glm.hpp>
 
 #include "include/frame_data.h"
+#include "options/option_proto.h"
 #include "scene/shutter.h"
 #include "service/input_checks.h"
 #include "service/scene_analysis.h"
@@ -16,43 +17,6 @@ double ms_between(Session::Clock::time_point a, Session::Clock::time_point b) {
 }
 
 std::string size_text(uint32_t w, uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); }
-
-std::string text(const std::string& v) { return v; }
-std::string text(bool v) { return v ? "true" : "false"; }
-std::string text(uint32_t v) { return std::to_string(v); }
-std::string text(float v) { return format_float(v); }
-
-// "<option> changed from a to b" for every ReSTIR option that differs (the RenderOptions names).
-std::vector<std::string> restir_changes(const render::RestirOptions& a, const render::RestirOptions& b) {
-  std::vector<std::string> out;
-  auto field = [&](const char* name, const auto& x, const auto& y) {
-    if (x != y) out.push_back(std::string(name) + " changed from " + text(x) + " to " + text(y));
-  };
-  field("shift", a.shift, b.shift);
-  field("mis", a.mis, b.mis);
-  field("suffix", a.suffix, b.suffix);
-  field("unbiased", a.unbiased, b.unbiased);
-  field("temporal_reuse", a.temporal, b.temporal);
-  field("spatial_reuse", a.spatial, b.spatial);
-  field("confidence_cap", a.confidence_cap, b.confidence_cap);
-  field("still_confidence_cap", a.still_confidence_cap, b.still_confidence_cap);
-  field("spatial_neighbors", a.spatial_neighbors, b.spatial_neighbors);
-  field("spatial_radius", a.spatial_radius, b.spatial_radius);
-  field("initial_candidates", a.initial_candidates, b.initial_candidates);
-  field("light_candidates", a.light_candidates, b.light_candidates);
-  field("splats_per_frame", a.splats_per_frame, b.splats_per_frame);
-  field("disocclusion_spatial_neighbors", a.disocclusion_spatial_neighbors, b.disocclusion_spatial_neighbors);
-  field("disocclusion_initial_candidates", a.disocclusion_initial_candidates, b.disocclusion_initial_candidates);
-  field("lod_mapping", a.lod_mapping, b.lod_mapping);
-  field("lod_matching", a.lod_matching, b.lod_matching);
-  field("lod_vertices", a.lod_vertices, b.lod_vertices);
-  field("direct_strata", a.direct_strata, b.direct_strata);
-  field("albedo_strata", a.albedo_strata, b.albedo_strata);
-  field("colour_cv", a.colour_cv, b.colour_cv);
-  field("temporal_filter", a.temporal_filter, b.temporal_filter);
-  field("deep_backup", a.deep_backup, b.deep_backup);
-  return out;
-}
 
 void set_time(google::protobuf::Timestamp* t, std::chrono::system_clock::time_point tp) {
   const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(tp.time_since_epoch()).count();
@@ -158,15 +122,16 @@ std::optional<Session::Clock::time_point> Session::idle_since() const {
   return idle_since_;
 }
 
-void Session::apply_locked(const PendingInput& input, std::string& reset_reason) {
+void Session::apply_locked(const PendingInput& input, std::string& reset_reason, std::vector<v1::Decision>& option_changes) {
   render::RenderSettings next = settings_;
-  v1::RenderOptions options;
+  v1::RenderOptions before, options;
   bool radius_requested = false;
   {
     std::lock_guard lock(mu_);
-    options = spec_.options;
+    before = spec_.options;
     radius_requested = spec_.requested.has_spatial_radius();
   }
+  options = before;
   options.MergeFrom(input.options);
   normalize(options);
   if (input.resolution) std::tie(next.width, next.height) = *input.resolution;
@@ -177,16 +142,33 @@ void Session::apply_locked(const PendingInput& input, std::string& reset_reason)
   next.max_depth = options.max_depth();
   next.restir = restir_options(options);
 
+  // Every option the input changed (options/option_table.h, OnChange): one that applies to the
+  // method re-creates the GPU state or takes effect in place; one that does not is kept and said so.
   std::string changes;
   auto add = [&](const std::string& c) { changes += (changes.empty() ? "" : "; ") + c; };
   if (next.width != settings_.width || next.height != settings_.height)
     add("resolution changed from " + size_text(settings_.width, settings_.height) + " to " + size_text(next.width, next.height));
-  if (next.spp != settings_.spp) add("spp changed from " + std::to_string(settings_.spp) + " to " + std::to_string(next.spp));
-  if (next.max_depth != settings_.max_depth)
-    add("max_depth changed from " + std::to_string(settings_.max_depth) + " to " + std::to_string(next.max_depth));
-  if (method().reuse)  // pt does not use the ReSTIR options: they change nothing on the device
-    for (const auto& c : restir_changes(settings_.restir, next.restir)) add(c);
-  if (changes.empty()) settings_.restir = next.restir;
+  const bool resized = !changes.empty();
+  for (const OptionChange& c : service::option_changes(method(), before, options)) {
+    const std::string what = std::string(c.option->name) + " changed from " + c.from + " to " + c.to;
+    v1::Decision d;
+    d.set_name(c.option->name);
+    d.set_requested(options::has_value(input.options, *c.option) ? c.to : "");  // empty: it followed the image height
+    d.set_value(c.to);
+    d.set_applies(c.applies);
+    if (!c.applies) {
+      d.set_reason(what + ": " + options::not_applying_reason(*c.option, method()));
+    } else if (c.option->on_change == options::OnChange::in_place) {
+      d.set_reason(what + ": takes effect from this frame on (the GPU state is kept)");
+    } else if (resized && c.option->default_from == options::DefaultFrom::image_height && !input.options.has_spatial_radius()) {
+      d.set_reason(what + ": follows the image height (the resolution change re-creates the GPU state)");
+    } else {
+      d.set_reason(what + ": the GPU state is re-created with it from this frame on");
+      add(what);
+    }
+    option_changes.push_back(std::move(d));
+  }
+  settings_.restir = next.restir;  // options that do not apply change nothing on the device
   if (!changes.empty()) {
     settings_ = next;
     renderer_.reset();
@@ -216,6 +198,7 @@ RenderedFrame Session::render(PendingInput input) {
   std::lock_guard rl(render_mu_);
   const auto start = Clock::now();
   std::string reason;
+  std::vector<v1::Decision> option_changes;
   uint64_t index = 0;
   {
     std::lock_guard lock(mu_);
@@ -223,7 +206,7 @@ RenderedFrame Session::render(PendingInput input) {
     if (frames_rendered_ == 0) reason = "first frame of the session";
     else if (released_) reason = "the GPU state was released when the previous stream ended and is re-created";
   }
-  apply_locked(input, reason);
+  apply_locked(input, reason, option_changes);
   if (!renderer_) create_renderer_locked();
   // Motion blur (RS-main 4.4): the shutter opens on the way from the camera of the frame rendered
   // before; the session's first frame has none and is an instant.
@@ -238,6 +221,7 @@ RenderedFrame Session::render(PendingInput input) {
   f.coalesced = input.coalesced;
   f.history_reset = !reason.empty();
   f.history_reset_reason = reason;
+  f.option_changes = std::move(option_changes);
   f.queued_ms = ms_between(input.received, start);
   f.render_ms = ms_between(start, done);
   {

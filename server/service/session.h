@@ -34,6 +34,7 @@ struct RenderedFrame {
   uint64_t dropped_before = 0;  // frames of this stream dropped since the previous one was sent
   bool history_reset = false;
   std::string history_reset_reason;
+  std::vector<v1::Decision> option_changes;  // Frame.option_changes
   double queued_ms = 0.0, render_ms = 0.0;
   std::vector<v1::ImageEncoding> encodings;
   float exposure = 0.0f;
@@ -91,7 +92,7 @@ class Session {
 
  private:
   void create_renderer_locked();  // render_mu_ held
-  void apply_locked(const PendingInput& input, std::string& reset_reason);
+  void apply_locked(const PendingInput& input, std::string& reset_reason, std::vector<v1::Decision>& option_changes);
 
   const std::string name_;
   const std::shared_ptr<const scene::Scene> scene_;

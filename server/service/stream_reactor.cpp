@@ -53,6 +53,7 @@ void StreamReactor::put_in_slot_locked(RenderedFrame frame) {
       frame.history_reset_reason = slot_->history_reset_reason + (frame.history_reset ? "; " + frame.history_reset_reason : "");
       frame.history_reset = true;
     }
+    frame.option_changes.insert(frame.option_changes.begin(), slot_->option_changes.begin(), slot_->option_changes.end());
   }
   slot_ = std::move(frame);
 }

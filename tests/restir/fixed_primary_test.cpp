@@ -28,7 +28,7 @@ SpatialRays spatial_rays(const std::string& method) {
   rs.height = 48;
   rs.method = method;
   rs.max_depth = 4;
-  rs.restir.shift = "reconnection";
+  rs.restir.shift = render::Shift::reconnection;
   rs.restir.temporal = false;
   rs.restir.spatial_neighbors = 2;
   render::Renderer renderer(gpu_context(), s, rs);

@@ -56,7 +56,7 @@ class LodMapping : public GpuTest {};
 TEST_F(LodMapping, OverlappingUvsAreMatchedOrRefused) {
   const Outcome matched = render_switch("overlap-uv", "restir-splat", [](render::RestirOptions&) {});
   const Outcome unmatched = render_switch("overlap-uv", "restir-splat", [](render::RestirOptions& o) { o.lod_matching = false; });
-  const Outcome off = render_switch("overlap-uv", "restir-splat", [](render::RestirOptions& o) { o.lod_mapping = "off"; });
+  const Outcome off = render_switch("overlap-uv", "restir-splat", [](render::RestirOptions& o) { o.lod_mapping = render::LodMapping::off; });
   std::printf("matching: mappings %llu matched %llu unique %llu ambiguous %llu outside %llu; without: ambiguous %llu; off: refused %llu\n",
               (unsigned long long)matched.reuse.at("lod.mappings"), (unsigned long long)matched.reuse.at("lod.matched"),
               (unsigned long long)matched.reuse.at("lod.unique"), (unsigned long long)matched.reuse.at("lod.failed_ambiguous"),
@@ -117,7 +117,7 @@ TEST_F(LodMapping, SuffixesReplayAcrossTheSwitch) {
 TEST_F(LodMapping, SwitchedPixelsKeepTheSpatialBoost) {
   const Outcome boost = render_switch("lod-cliff", "restir-gather", [](render::RestirOptions&) {});
   const Outcome plain = render_switch("lod-cliff", "restir-gather", [](render::RestirOptions& o) { o.disocclusion_spatial_neighbors = 2; });
-  const Outcome off = render_switch("lod-cliff", "restir-gather", [](render::RestirOptions& o) { o.lod_mapping = "off"; });
+  const Outcome off = render_switch("lod-cliff", "restir-gather", [](render::RestirOptions& o) { o.lod_mapping = render::LodMapping::off; });
   std::printf("lod-cliff restir-gather at the switch: spatial shifts %llu (boost 2 -> 2: %llu; lod_mapping off: %llu), mappings %llu\n",
               (unsigned long long)boost.reuse.at("spatial.shifts"), (unsigned long long)plain.reuse.at("spatial.shifts"),
               (unsigned long long)off.reuse.at("spatial.shifts"), (unsigned long long)boost.reuse.at("lod.mappings"));

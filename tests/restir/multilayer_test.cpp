@@ -22,6 +22,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "gpu/gpu_context.h"
+#include "options/option_table.h"
 #include "render/renderer.h"
 #include "support/test_scenes.h"
 #include "support/unbiasedness.h"
@@ -107,7 +108,7 @@ TEST_F(MultilayerDomains, DeepLayerEstimatesItsHiddenSurface) {
     RunningImage method(size, size);
     for (uint32_t r = 0; r < 384; ++r) {
       render::RenderSettings rs = multilayer_settings(size, 1000 + r);
-      rs.restir.layer_mode = mode;
+      strata::options::set_choice(rs.restir, "layer_mode", mode);
       rs.restir.view_layer = 1;
       render::Renderer renderer(gpu_context(), s, rs);
       image::Image mean;
@@ -427,7 +428,7 @@ TEST_P(MultilayerNumerics, EveryPixelAndLayerIsFinite) {
     render::RenderSettings rs = multilayer_settings(16, 3);
     rs.max_depth = 4;
     rs.restir.layers = c.layers;
-    rs.restir.layer_mode = c.mode;
+    strata::options::set_choice(rs.restir, "layer_mode", c.mode);
     rs.restir.view_layer = view;
     render::Renderer renderer(gpu_context(), s, rs);
     uint64_t rejected = 0, deepest = 0, disoccluded = 0;

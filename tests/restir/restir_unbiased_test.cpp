@@ -21,6 +21,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "gpu/gpu_context.h"
+#include "options/option_table.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"
 #include "scene/shutter.h"
@@ -313,9 +314,9 @@ std::vector<Case> cases() {
                .state = forward_camera});
   v.push_back({.name = "gather_dof_corner", .scene = "cornell", .options = [](render::RestirOptions& o) { o.spatial = false; },
                .state = dof_corner});
-  v.push_back({.name = "reconnection_shift", .scene = "cornell", .options = [](render::RestirOptions& o) { o.shift = "reconnection"; }});
+  v.push_back({.name = "reconnection_shift", .scene = "cornell", .options = [](render::RestirOptions& o) { o.shift = render::Shift::reconnection; }});
   v.push_back({.name = "balance_mis_3_neighbours", .scene = "cornell", .options = [](render::RestirOptions& o) {
-                 o.mis = "balance";
+                 o.mis = render::Mis::balance;
                  o.spatial_neighbors = 3;
                  o.spatial_radius = 6.0f;
                }});
@@ -393,7 +394,7 @@ std::vector<Case> cases() {
     // configuration's light) then has one sign in every scored frame instead of cancelling.
     v.push_back({.name = "replay_" + name, .scene = "cornell", .frames = 6, .runs = 64, .options = [](render::RestirOptions& o) {
                    o.spatial = false;
-                   o.suffix = "replay";
+                   o.suffix = render::Suffix::replay;
                  }, .scored = [](uint32_t f) { return f % 2 == 1; }, .state = state});
   }
   // suffix auto keeps a one-segment suffix whose ray misses the swept boxes of the changed
@@ -404,19 +405,19 @@ std::vector<Case> cases() {
            {"moving_occluder", moving_occluder}, {"suffix_only_motion", suffix_only_motion}}) {
     v.push_back({.name = "auto_" + name, .scene = "cornell", .frames = 6, .runs = 64, .options = [](render::RestirOptions& o) {
                    o.spatial = false;
-                   o.suffix = "auto";
+                   o.suffix = render::Suffix::automatic;
                  }, .scored = [](uint32_t f) { return f % 2 == 1; }, .state = state});
   }
   // ... and where the slab shades the light: keeping a suffix the slab crosses is caught here
   // (the swept-box test switched off: block |z| 12.9; `cached`: 19.5).
   v.push_back({.name = "auto_light_shade", .scene = "cornell", .frames = 6, .runs = 256, .options = [](render::RestirOptions& o) {
                  o.spatial = false;
-                 o.suffix = "auto";
+                 o.suffix = render::Suffix::automatic;
                }, .scored = [](uint32_t f) { return f % 2 == 1; }, .state = light_shade});
   v.push_back({.name = "replay_glossy_moving_occluder", .scene = "cornell", .frames = 6, .runs = 64,
                .options = [](render::RestirOptions& o) {
                  o.spatial = false;
-                 o.suffix = "replay";
+                 o.suffix = render::Suffix::replay;
                },
                .scored = [](uint32_t f) { return f % 2 == 1; }, .state = moving_occluder, .variant = "glossy_tall_box",
                .edit = glossy_tall_box});
@@ -424,13 +425,13 @@ std::vector<Case> cases() {
   v.push_back({.name = "cached_moving_emitter_is_biased", .scene = "cornell", .frames = 6, .runs = 64,
                .options = [](render::RestirOptions& o) {
                  o.spatial = false;
-                 o.suffix = "cached";
+                 o.suffix = render::Suffix::cached;
                },
                .scored = [](uint32_t f) { return f % 2 == 1; }, .state = moving_emitter, .expect_bias = true});
   v.push_back({.name = "splat_replay_moving_occluder", .scene = "cornell", .method = "restir-splat", .frames = 6, .runs = 64,
                .options = [](render::RestirOptions& o) {
                  o.spatial = false;
-                 o.suffix = "replay";
+                 o.suffix = render::Suffix::replay;
                },
                .scored = [](uint32_t f) { return f % 2 == 1; }, .state = moving_occluder});
   // Sub-pixel geometry: foliage's grass blades are narrower than a pixel, so each frame's camera
@@ -452,7 +453,7 @@ std::vector<Case> cases() {
   // land in the pixels the quad uncovers (tests/restir/multilayer_test.cpp checks that they do).
   for (const char* mode : {"active", "uniform", "no-depth-ranges"}) {
     const std::string suffix = std::string(mode) == "active" ? "" : "_" + method_test_name(mode);
-    auto options = [mode](render::RestirOptions& o) { o.layer_mode = mode; };
+    auto options = [mode](render::RestirOptions& o) { strata::options::set_choice(o, "layer_mode", mode); };
     v.push_back({.name = "multilayer_carousel" + suffix, .scene = "carousel", .method = "restir-multilayer", .options = options});
     v.push_back({.name = "multilayer_two_planes" + suffix, .scene = "two-planes", .method = "restir-multilayer", .options = options,
                  .state = front_jumping, .variant = "built", .edit = two_planes_scene});

@@ -7,6 +7,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "gpu/gpu_context.h"
+#include "options/option_table.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"
 #include "support/test_scenes.h"
@@ -39,7 +40,7 @@ Totals run(const scene::Scene& s, const std::string& method, const std::string& 
   rs.method = method;
   rs.max_depth = 5;
   rs.restir.spatial = false;
-  rs.restir.suffix = suffix;
+  strata::options::set_choice(rs.restir, "suffix", suffix);
   render::Renderer renderer(gpu_context(), s, rs);
   Totals t;
   for (uint32_t f = 0; f < 4; ++f) {
@@ -102,7 +103,7 @@ TEST_P(SuffixReuse, AutoKeepsOnlyWhatAReplayWouldFind) {
     rs.method = GetParam();
     rs.max_depth = 4;
     rs.restir.spatial = false;
-    rs.restir.suffix = suffix;
+    strata::options::set_choice(rs.restir, "suffix", suffix);
     render::Renderer renderer(gpu_context(), s, rs);
     renderer.render(state(0), 0);
     render::FrameResult r = renderer.render(state(1), 1);

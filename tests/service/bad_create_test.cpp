@@ -86,13 +86,13 @@ TEST_F(BadCreateTest, EveryBadRequestGetsItsStatusAndMessage) {
   add("unknown method", [](auto& r) { r.set_method("magic"); }, invalid, "method = 'magic' is not a method");
   add("method not implemented", [](auto& r) { r.set_method("restir-lod"); }, invalid,
       "method = 'restir-lod' is not a method; methods: pt, restir-gather, restir-di, restir-splat, restir-splat-backup, restir-multilayer");
-  add("spp 0", [](auto& r) { r.mutable_options()->set_spp(0); }, invalid, "options.spp = 0 is outside [1, 64] (max_spp)");
-  add("spp over max_spp", [](auto& r) { r.mutable_options()->set_spp(65); }, invalid, "options.spp = 65 is outside [1, 64] (max_spp)");
+  add("spp 0", [](auto& r) { r.mutable_options()->set_spp(0); }, invalid, "options.spp = 0 is outside [1, 64] (limit max_spp)");
+  add("spp over max_spp", [](auto& r) { r.mutable_options()->set_spp(65); }, invalid, "options.spp = 65 is outside [1, 64] (limit max_spp)");
   add("max_depth over the limit", [](auto& r) { r.mutable_options()->set_max_depth(33); }, invalid, "options.max_depth = 33");
   add("NaN confidence cap", [&](auto& r) { r.mutable_options()->set_confidence_cap(nan); }, invalid, "options.confidence_cap = nan");
   add("layers out of range", [](auto& r) { r.mutable_options()->set_layers(9); }, invalid, "options.layers = 9 is outside [0, 8]");
-  add("unknown shift", [](auto& r) { r.mutable_options()->set_shift(static_cast<v1::Shift>(7)); }, invalid,
-      "options.shift = 7 is not one of");
+  add("unknown shift", [](auto& r) { r.mutable_options()->mutable_experimental()->set_shift(static_cast<v1::Shift>(7)); }, invalid,
+      "options.experimental.shift = 7 is not one of");
   add("negative spatial radius", [](auto& r) { r.mutable_options()->set_spatial_radius(-1.0f); }, invalid,
       "options.spatial_radius = -1 is outside [1, 256] pixels");
   add("unknown encoding", [](auto& r) { r.clear_encodings(); r.add_encodings(static_cast<v1::ImageEncoding>(9)); }, invalid,

@@ -126,7 +126,7 @@ TEST_F(BadStreamTest, EveryBadInputEndsItsStreamWithStatusAndMessage) {
     in.mutable_resolution()->set_height(1000);
   }, invalid, "resolution.width * resolution.height = 1000000 exceeds max_pixels = 307200");
   add("spp 0 in an option change", false, [](auto& in) { in.mutable_options()->set_spp(0); }, invalid,
-      "options.spp = 0 is outside [1, 64] (max_spp)");
+      "options.spp = 0 is outside [1, 64] (limit max_spp)");
   add("unknown LoD mapping", false, [](auto& in) { in.mutable_options()->set_lod_mapping(static_cast<v1::LodMapping>(12)); },
       invalid, "options.lod_mapping = 12 is not one of");
   add("unspecified encoding", false, [](auto& in) { in.add_encodings(v1::IMAGE_ENCODING_UNSPECIFIED); }, invalid,

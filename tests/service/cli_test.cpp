@@ -112,18 +112,19 @@ TEST(CliTest, StrataStreamSendsRestirOptionsAndLogsReuse) {
   const auto doc = nlohmann::json::parse(read_file(dir.path / "out" / "frames.json"));
   const auto& o = doc["session"]["options"];
   EXPECT_EQ(doc["session"]["method"], "restir-gather");
-  EXPECT_EQ(o["shift"], "SHIFT_RECONNECTION");
-  EXPECT_EQ(o["mis"], "MIS_BALANCE");
+  const auto& x = o["experimental"];  // the ablations (RenderOptions.experimental)
+  EXPECT_EQ(x["shift"], "SHIFT_RECONNECTION");
+  EXPECT_EQ(x["mis"], "MIS_BALANCE");
   EXPECT_EQ(o["confidence_cap"], 10.0);
   EXPECT_EQ(o["still_confidence_cap"], 12.0);
   EXPECT_EQ(o["spatial_neighbors"], 2);
   EXPECT_EQ(o["spatial_radius"], 12.0);
   EXPECT_EQ(o["initial_candidates"], 2);
   EXPECT_EQ(o["light_candidates"], 3);
-  EXPECT_EQ(o["unbiased"], false);
+  EXPECT_EQ(x["unbiased"], false);
   EXPECT_EQ(o["disocclusion_spatial_neighbors"], 5);
   EXPECT_EQ(o["direct_strata"], 2);
-  EXPECT_EQ(o["temporal_filter"], false);
+  EXPECT_EQ(x["temporal_filter"], false);
   EXPECT_EQ(o["temporal_reuse"], true);
   EXPECT_EQ(o["spatial_reuse"], true);
   ASSERT_EQ(doc["frames"].size(), 2u);

@@ -28,15 +28,15 @@ TEST_F(LodOptionsTest, DecisionsSayWhereTauMaps) {
 
   auto off_req = request("lod-cliff", "restir-splat");
   off_req.mutable_options()->set_lod_mapping(v1::LOD_MAPPING_OFF);
-  off_req.mutable_options()->set_lod_vertices(v1::LOD_VERTICES_PRIMARY);
-  off_req.mutable_options()->set_lod_matching(false);
+  off_req.mutable_options()->mutable_experimental()->set_lod_vertices(v1::LOD_VERTICES_PRIMARY);
+  off_req.mutable_options()->mutable_experimental()->set_lod_matching(false);
   const v1::Session off = create_ok(stub(), off_req);
   EXPECT_EQ(decision(off, "lod_mapping")->value(), "off");
   EXPECT_FALSE(decision(off, "lod_mapping")->applies());
   EXPECT_NE(decision(off, "lod_mapping")->reason().find("refuses"), std::string::npos);
   EXPECT_EQ(decision(off, "lod_vertices")->value(), "primary");
   EXPECT_FALSE(decision(off, "lod_vertices")->applies());
-  EXPECT_EQ(off.options().lod_matching(), false);
+  EXPECT_EQ(off.options().experimental().lod_matching(), false);
 
   const v1::Session cornell = create_ok(stub(), request("cornell", "restir-splat"));
   EXPECT_EQ(decision(cornell, "lod_mapping")->value(), "off");
@@ -50,7 +50,7 @@ TEST_F(LodOptionsTest, DecisionsSayWhereTauMaps) {
 
 TEST_F(LodOptionsTest, UnknownLodVerticesIsRefusedNamingTheField) {
   auto req = request("lod-cliff", "restir-splat");
-  req.mutable_options()->set_lod_vertices(static_cast<v1::LodVertices>(9));
+  req.mutable_options()->mutable_experimental()->set_lod_vertices(static_cast<v1::LodVertices>(9));
   v1::Session s;
   const grpc::Status st = create_session(stub(), req, &s);
   EXPECT_EQ(st.error_code(), grpc::StatusCode::INVALID_ARGUMENT);

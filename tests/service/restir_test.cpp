@@ -45,8 +45,8 @@ TEST_F(RestirTest, GatherSessionReportsItsOptionsAndStreamsReuseStatistics) {
   EXPECT_EQ(s.method(), "restir-gather");
   // Effective options: the renderer's defaults (docs/ARCHITECTURE.md, Methods) and what was asked.
   EXPECT_EQ(s.options().spp(), 1u);
-  EXPECT_EQ(s.options().shift(), v1::SHIFT_HYBRID);
-  EXPECT_EQ(s.options().mis(), v1::MIS_PAIRWISE);
+  EXPECT_EQ(s.options().experimental().shift(), v1::SHIFT_HYBRID);
+  EXPECT_EQ(s.options().experimental().mis(), v1::MIS_PAIRWISE);
   EXPECT_FLOAT_EQ(s.options().confidence_cap(), 2.0f);  // restir-gather's (method_table.cpp)
   EXPECT_FLOAT_EQ(s.options().still_confidence_cap(), 8.0f);
   EXPECT_EQ(s.options().spatial_neighbors(), 2u);
@@ -58,10 +58,10 @@ TEST_F(RestirTest, GatherSessionReportsItsOptionsAndStreamsReuseStatistics) {
   EXPECT_EQ(s.options().light_candidates(), 2u);
   EXPECT_TRUE(s.options().temporal_reuse());
   EXPECT_TRUE(s.options().spatial_reuse());
-  EXPECT_TRUE(s.options().unbiased());
+  EXPECT_TRUE(s.options().experimental().unbiased());
   EXPECT_EQ(s.options().disocclusion_spatial_neighbors(), 6u);
   EXPECT_EQ(s.options().direct_strata(), 3u);
-  EXPECT_TRUE(s.options().temporal_filter());
+  EXPECT_TRUE(s.options().experimental().temporal_filter());
   for (const char* name : k_restir_options) {
     const v1::Decision* d = decision(s, name);
     ASSERT_NE(d, nullptr) << name;
@@ -263,7 +263,7 @@ TEST_F(RestirTest, BadRestirOptionsAreInvalidArgumentNamingTheField) {
     cases.push_back({std::move(what), std::move(r), std::move(message)});
   };
   add("spatial_neighbors 9", "restir-gather", [](auto& o) { o.set_spatial_neighbors(9); },
-      "options.spatial_neighbors = 9 is outside [0, 8]");
+      "options.spatial_neighbors = 9 is outside [0, 8] (limit RESTIR_MAX_SPATIAL_NEIGHBORS)");
   add("spatial_radius 0", "restir-gather", [](auto& o) { o.set_spatial_radius(0.0f); },
       "options.spatial_radius = 0 is outside [1, 256]");
   add("spatial_radius 300", "restir-gather", [](auto& o) { o.set_spatial_radius(300.0f); },
@@ -277,13 +277,13 @@ TEST_F(RestirTest, BadRestirOptionsAreInvalidArgumentNamingTheField) {
   add("light_candidates 0", "restir-di", [](auto& o) { o.set_light_candidates(0); },
       "options.light_candidates = 0 is outside [1, 32]");
   add("disocclusion_spatial_neighbors 9", "restir-gather", [](auto& o) { o.set_disocclusion_spatial_neighbors(9); },
-      "options.disocclusion_spatial_neighbors = 9 is outside [0, 8] (0 = spatial_neighbors)");
+      "options.disocclusion_spatial_neighbors = 9 is outside [0, 8] (0 = spatial_neighbors; limit RESTIR_MAX_SPATIAL_NEIGHBORS)");
   add("hole_fill_radius 9", "restir-multilayer", [](auto& o) { o.set_hole_fill_radius(9); },
-      "options.hole_fill_radius = 9 is outside [0, 8] (0 = off)");
+      "options.hole_fill_radius = 9 is outside [0, 8] pixels (0 = off; limit RESTIR_MAX_HOLE_FILL_RADIUS)");
   add("silhouette_band 33", "restir-multilayer", [](auto& o) { o.set_silhouette_band(33); },
-      "options.silhouette_band = 33 is outside [0, 32] (0 = off)");
+      "options.silhouette_band = 33 is outside [0, 32] pixels (0 = off; limit RESTIR_MAX_SILHOUETTE_BAND)");
   add("reveal_lookahead 17", "restir-multilayer", [](auto& o) { o.set_reveal_lookahead(17); },
-      "options.reveal_lookahead = 17 is outside [0, 16] (0 = off)");
+      "options.reveal_lookahead = 17 is outside [0, 16] frames (0 = off; limit RESTIR_MAX_REVEAL_LOOKAHEAD)");
   add("direct_strata 0", "restir-gather", [](auto& o) { o.set_direct_strata(0); },
       "options.direct_strata = 0 is outside [1, 8]");
   add("direct_strata 9", "restir-splat", [](auto& o) { o.set_direct_strata(9); },
@@ -293,13 +293,13 @@ TEST_F(RestirTest, BadRestirOptionsAreInvalidArgumentNamingTheField) {
   add("confidence_cap 1001", "restir-gather", [](auto& o) { o.set_confidence_cap(1001.0f); },
       "options.confidence_cap = 1001 is outside [1, 1000]");
   add("still_confidence_cap 0.5", "restir-gather", [](auto& o) { o.set_still_confidence_cap(0.5f); },
-      "options.still_confidence_cap = 0.5 is outside [1, 1000] (0 = confidence_cap)");
+      "options.still_confidence_cap = 0.5 is outside [1, 1000] (0 = confidence_cap; limit RESTIR_MAX_CONFIDENCE_CAP)");
   add("still_confidence_cap NaN", "restir-gather", [](auto& o) { o.set_still_confidence_cap(std::nanf("")); },
       "options.still_confidence_cap = nan is outside [1, 1000]");
-  add("shift not an enum value", "restir-gather", [](auto& o) { o.set_shift(static_cast<v1::Shift>(9)); },
-      "options.shift = 9 is not one of SHIFT_RECONNECTION, SHIFT_HYBRID");
-  add("mis not an enum value", "restir-gather", [](auto& o) { o.set_mis(static_cast<v1::Mis>(5)); },
-      "options.mis = 5 is not one of MIS_BALANCE, MIS_PAIRWISE");
+  add("shift not an enum value", "restir-gather", [](auto& o) { o.mutable_experimental()->set_shift(static_cast<v1::Shift>(9)); },
+      "options.experimental.shift = 9 is not one of SHIFT_RECONNECTION, SHIFT_HYBRID");
+  add("mis not an enum value", "restir-gather", [](auto& o) { o.mutable_experimental()->set_mis(static_cast<v1::Mis>(5)); },
+      "options.experimental.mis = 5 is not one of MIS_BALANCE, MIS_PAIRWISE");
   add("restir-gather with spp 4", "restir-gather", [](auto& o) { o.set_spp(4); }, "options.spp = 4");
   add("restir-di with spp 2", "restir-di", [](auto& o) { o.set_spp(2); }, "options.spp = 2");
   add("pt with spatial_neighbors 9", "pt", [](auto& o) { o.set_spatial_neighbors(9); },

@@ -21,8 +21,8 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
   gpu::GpuRestirConstants c{};
   c.initial_candidates = o.initial_candidates;
   c.light_candidates = o.light_candidates;
-  c.shift_mode = o.shift == "reconnection" ? gpu::SHIFT_RECONNECTION : gpu::SHIFT_HYBRID;
-  c.mis_mode = o.mis == "balance" ? gpu::MIS_BALANCE : gpu::MIS_PAIRWISE;
+  c.shift_mode = static_cast<uint32_t>(o.shift);
+  c.mis_mode = static_cast<uint32_t>(o.mis);
   // The still test reads the domain's primary vertex (gather) or pixel-centre hit (splat).
   c.confidence_cap = o.moving_cap(spec);
   c.still_confidence_cap = o.still_cap(spec);
@@ -36,17 +36,12 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
   c.albedo_strata = o.albedo_strata_used(spec);
   c.colour_cv = o.colour_cv_used(spec);
   c.colour_cv_spread = o.colour_cv_spread;
-  c.suffix_mode = o.suffix == "fail"     ? gpu::SUFFIX_FAIL
-                  : o.suffix == "cached" ? gpu::SUFFIX_CACHED
-                  : o.suffix == "replay" ? gpu::SUFFIX_REPLAY
-                                         : gpu::SUFFIX_AUTO;
+  c.suffix_mode = static_cast<uint32_t>(o.suffix);
   // ReSTIR DI: camera, x1, light (one bounce).
   c.max_segments = spec.direct_lighting || o.direct_lighting ? std::min<uint32_t>(2, s.max_depth) : s.max_depth;
   c.layers = layers;
   c.hole_fill_radius = o.hole_fill_radius;
-  c.layer_mode = o.layer_mode == "uniform"           ? gpu::LAYER_MODE_UNIFORM
-                 : o.layer_mode == "no-depth-ranges" ? gpu::LAYER_MODE_NO_RANGES
-                                                     : gpu::LAYER_MODE_ACTIVE;
+  c.layer_mode = static_cast<uint32_t>(o.layer_mode);
   c.depth_range_epsilon = k_depth_range_epsilon;
   c.view_layer = o.view_layer;
   // Only where the splat counting sort runs before the initial stage (it says where no splat landed).
@@ -56,11 +51,11 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
 
 }  // namespace
 
-std::string suffix_decision(const std::string& suffix_option, bool scene_moved, uint32_t changed_instances) {
+std::string suffix_decision(Suffix suffix_option, bool scene_moved, uint32_t changed_instances) {
   if (!scene_moved) return "suffixes kept (nothing moved)";
-  if (suffix_option == "fail") return "suffixes refused (suffix fail: the scene changed)";
-  if (suffix_option == "cached") return "suffixes cached (suffix cached: stored radiance, biased)";
-  if (suffix_option == "replay") return "suffixes replayed (the scene changed)";
+  if (suffix_option == Suffix::fail) return "suffixes refused (suffix fail: the scene changed)";
+  if (suffix_option == Suffix::cached) return "suffixes cached (suffix cached: stored radiance, biased)";
+  if (suffix_option == Suffix::replay) return "suffixes replayed (the scene changed)";
   const std::string changed = std::to_string(changed_instances) + " changed instance" + (changed_instances == 1 ? "" : "s");
   if (changed_instances > gpu::SWEPT_BOXES_MAX)
     return "suffixes replayed (suffix auto: " + changed + ", more than the " + std::to_string(gpu::SWEPT_BOXES_MAX) +

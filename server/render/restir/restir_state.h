@@ -52,7 +52,7 @@ struct RestirState {
   // The splat stage's counting sort runs (a splat method with temporal reuse).
   bool splat_sort() const { return spec.temporal == StageKind::temporal_splat && settings.restir.temporal; }
   // layer_mode uniform / no-depth-ranges: deep domains by rank, a splat's layer by walking its camera ray.
-  bool layer_stepping() const { return multilayer() && settings.restir.layer_mode != "active"; }
+  bool layer_stepping() const { return multilayer() && settings.restir.layer_mode != LayerMode::active; }
   // The silhouette band (domain_fill.comp) in pixels: layer_mode active only (0: off).
   uint32_t silhouette_band() const { return multilayer() && !layer_stepping() ? settings.restir.silhouette_band : 0; }
   // The reveal prediction (domain_build.comp) in frames: layer_mode active only (0: off).

@@ -63,7 +63,7 @@ class DomainInitStage : public Stage {
 
   void record(const StageFrame& f) override {
     // layer_mode uniform keeps every layer active: nothing to propagate.
-    propagated_ = f.frame.history_valid && state_.settings.restir.layer_mode != "uniform";
+    propagated_ = f.frame.history_valid && state_.settings.restir.layer_mode != LayerMode::uniform;
     timed(f, "domain_init", [&] {
       vkCmdFillBuffer(f.cmd, state_.domain_marks.handle(), 0, VK_WHOLE_SIZE, gpu::OCCLUDER_NONE);  // no marks
       const gpu::GpuDomainArgs empty[2] = {{0, 1, 1, 0}, {0, 1, 1, 0}};  // no workgroups yet; y = z = 1; length 0
@@ -85,16 +85,16 @@ class DomainInitStage : public Stage {
 
   PassDecision decision() const override {
     const RestirOptions& o = state_.settings.restir;
-    std::string mode = o.layer_mode == "uniform" ? "uniform: every layer of every pixel active (ML Fig. 5 validation)"
-                       : o.layer_mode == "no-depth-ranges"
+    std::string mode = o.layer_mode == LayerMode::uniform ? "uniform: every layer of every pixel active (ML Fig. 5 validation)"
+                       : o.layer_mode == LayerMode::no_depth_ranges
                            ? "active domains, layers found by stepping rays (ML Table 1 'w/o ranges')"
                            : "active domains propagated by representative hits, occluder check, depth ranges e = 0.01";
     return {"domain_init", true,
             std::to_string(state_.layers) + " layers (" + state_.layers_reason + "); " + mode +
-                (o.layer_mode == "uniform" ? std::string()
+                (o.layer_mode == LayerMode::uniform ? std::string()
                                            : "; hole filling radius " + std::to_string(o.hole_fill_radius) + " px" +
                                                  dormancy_reason()) +
-                (propagated_ || o.layer_mode == "uniform" ? "" : "; no previous frame: front layer only")};
+                (propagated_ || o.layer_mode == LayerMode::uniform ? "" : "; no previous frame: front layer only")};
   }
 
   void collect(std::span<const uint32_t> c, FrameStats& s) const override {

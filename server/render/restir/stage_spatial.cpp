@@ -11,6 +11,7 @@
 #include <cstdio>
 
 #include "include/bindings.h"
+#include "options/option_table.h"
 #include "restir/restir_limits.h"
 #include "restir/spatial_pair_data.h"
 #include "render/restir/restir_state.h"
@@ -23,7 +24,7 @@ namespace {
 // neighbours need pairwise MIS (the balance heuristic shifts every neighbour's sample into every
 // other neighbour's domain, which a pair does not provide), so balance has none.
 uint32_t pair_offsets(const RestirOptions& o) {
-  if (o.mis != "pairwise") return 0;
+  if (o.mis != Mis::pairwise) return 0;
   return std::min((o.spatial_neighbors + 1) / 2, gpu::SPATIAL_MAX_PAIR_OFFSETS);
 }
 bool pairs(const RestirOptions& o) { return pair_offsets(o) > 0; }
@@ -97,7 +98,7 @@ class SpatialStage : public Stage {
       std::snprintf(radius, sizeof radius, "radius %.1f px (%.1f%% of the %u px image height, at least %.0f px: the references' 20-32 px at 1080p)",
                     px, 100.0f * RestirOptions::spatial_radius_fraction, state_.height, RestirOptions::spatial_radius_floor);
     return {"spatial", true,
-            std::to_string(o.spatial_neighbors) + " neighbour(s) in one round, " + radius + ", " + o.mis + " MIS" +
+            std::to_string(o.spatial_neighbors) + " neighbour(s) in one round, " + radius + ", " + options::choice_name("mis", o.mis) + " MIS" +
                 (pairs_ ? "; the first are the frame's pairs (i + o and i - o for " + std::to_string(pair_offsets_) +
                               " offset(s) o drawn per frame), each pair's shifts made once for both pixels"
                         : std::string()) +

@@ -2,6 +2,7 @@
 // into the previous frame, and the reservoir found there is shifted here and resampled with the
 // canonical sample (shaders/passes/restir_temporal.comp).
 #include "include/bindings.h"
+#include "options/option_table.h"
 #include "render/restir/restir_state.h"
 #include "render/restir/stages.h"
 
@@ -30,7 +31,7 @@ class TemporalGatherStage : public Stage {
     const RestirOptions& o = state_.settings.restir;
     if (!ran_) return {"temporal", false, "no previous frame yet"};
     return {"temporal", true,
-            "gather, " + o.shift + " shift, " + (o.unbiased ? "reverse-shift MIS" : "confidence weights (biased)") + "; " +
+            "gather, " + options::choice_name("shift", o.shift) + " shift, " + (o.unbiased ? "reverse-shift MIS" : "confidence weights (biased)") + "; " +
                 suffix_decision(o.suffix, moved_, changed_)};
   }
 

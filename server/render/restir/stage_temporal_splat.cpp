@@ -9,6 +9,7 @@
 // list of active deep domains.
 #include "include/bindings.h"
 #include "include/frame_data.h"
+#include "options/option_table.h"
 #include "render/restir/restir_state.h"
 #include "render/restir/splat_sort.h"
 #include "render/restir/stages.h"
@@ -66,7 +67,7 @@ class TemporalSplatStage : public Stage {
     const uint32_t k = sorted_.partitions;
     return {"temporal", true,
             std::string(state_.spec.backup ? "splat with backup sample" : "splat") + " (counting sort; reprojection + " +
-                state_.settings.restir.shift + " shift, reverse-splat MIS, bilinear confidence" +
+                options::choice_name("shift", state_.settings.restir.shift) + " shift, reverse-splat MIS, bilinear confidence" +
                 (k > 1 ? "; " + std::to_string(k) + " time partitions over the shutter)" : ")") + "; " +
                 suffix_decision(state_.settings.restir.suffix, moved_, changed_)};
   }

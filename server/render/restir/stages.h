@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "render/restir/restir_options.h"
 #include "render/restir/stage.h"
 
 namespace strata::render {
@@ -32,6 +33,6 @@ std::unique_ptr<Stage> make_shade_stage(const RestirState& state);
 
 // What the temporal stage did with path suffixes this frame (option `suffix`; `changed_instances`:
 // the swept boxes of GpuScene, which suffix auto tests a one-segment suffix against).
-std::string suffix_decision(const std::string& suffix_option, bool scene_moved, uint32_t changed_instances);
+std::string suffix_decision(Suffix suffix_option, bool scene_moved, uint32_t changed_instances);
 
 }  // namespace strata::render
