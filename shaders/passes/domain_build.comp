@@ -217,7 +217,7 @@ void main() {
     for (uint step = 0u; step < 2u * LAYERS_MAX && found <= needed; ++step) {
       RayHit h;
       rays++;
-      if (!trace_closest(origin + dir * t0, dir, 1e30, h)) break;
+      if (!trace_closest(origin + dir * t0, dir, RAY_UNBOUNDED, h)) break;
       float t = t0 + h.t;
       SurfaceHit s = load_hit(h);
       if (dot(s.geo_normal, dir) < 0.0) {  // a front face: the next layer's representative hit

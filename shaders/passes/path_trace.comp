@@ -58,7 +58,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
 
   for (uint depth = 1u; depth <= u_frame.max_depth; ++depth) {
     RayHit rh;
-    if (!trace_closest(origin, dir, 1e30, rh)) {
+    if (!trace_closest(origin, dir, RAY_UNBOUNDED, rh)) {
       float w = 1.0;
       if (k_env_nee && prev_bsdf_pdf > 0.0) w = mis_power(prev_bsdf_pdf, environment_pdf(u_frame));
       radiance += throughput * u_frame.environment.rgb * w;
@@ -99,7 +99,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
         vec3 wi = to_local(ls.direction, t, b, ns);
         vec3 f = bsdf_eval_cos(bsdf, wo, wi);
         if (any(greaterThan(f, vec3(0.0)))) {
-          float t_max = isinf(ls.distance) ? 1e30 : ls.distance * (1.0 - SHADOW_RAY_SHORTEN);
+          float t_max = isinf(ls.distance) ? RAY_UNBOUNDED : ls.distance * (1.0 - SHADOW_RAY_SHORTEN);
           g_rays_shadow++;
           if (trace_visible(x, ls.direction, t_max)) {
             float w = mis_power(ls.pdf, bsdf_pdf(bsdf, wo, wi));

@@ -16,6 +16,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "include/frame_data.h"
 #include "include/scene_bridge.glsl"
 #include "restir/centre_surface.glsl"
+#include "restir/rng_streams.h"
 
 layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
 layout(set = 0, binding = BINDING_PRIMARY, std430) writeonly buffer Primary { GpuPrimaryHit b_primary[]; };
@@ -35,7 +36,7 @@ void main() {
   GpuCamera camera = u_frame.camera;
   if (u_frame.primary_mode == PRIMARY_DOMAIN) {
     // The key of the initial pass's first candidate path, so that its camera sample is this one.
-    cs = camera_sample(rng_key(index, 0u, u_frame.frame_index, u_frame.seed));
+    cs = camera_sample(rng_key(index, RNG_STREAM_PATH_FIRST, u_frame.frame_index, u_frame.seed));
     camera = camera_at(false, cs.time);
   }
   vec3 origin;
@@ -56,7 +57,7 @@ void main() {
   p.position_area = vec4(0.0);
   p.geo_normal_material = vec4(0.0);
   p.shading_normal_kind = vec4(0.0);
-  if (trace_closest(origin, dir, 1e30, h)) {
+  if (trace_closest(origin, dir, RAY_UNBOUNDED, h)) {
     p.t = h.t;
     p.instance = h.instance;
     p.geometry = h.geometry;

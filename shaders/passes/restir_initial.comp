@@ -119,7 +119,7 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
     if (!found) return;  // no path of this camera ray is in the domain; what it sees is the front layer's
   } else {
     g_rays++;
-    found = trace_closest(origin, dir, 1e30, h);
+    found = trace_closest(origin, dir, RAY_UNBOUNDED, h);
   }
   if (!found) {
     g_primary_emission += u_frame.environment.rgb / n_init;  // one segment: not resampled
@@ -154,7 +154,7 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
       if (!isinf(ls.distance) && ls.cos_light < SHIFT_MIN_COS) continue;
       vec3 fs = scatter(v, ls.direction);
       if (!(luminance(fs) > 0.0)) continue;
-      float t_max = isinf(ls.distance) ? 1e30 : ls.distance * (1.0 - SHADOW_RAY_SHORTEN);
+      float t_max = isinf(ls.distance) ? RAY_UNBOUNDED : ls.distance * (1.0 - SHADOW_RAY_SHORTEN);
       g_rays++;
       if (!trace_visible(spawn(v), ls.direction, t_max)) continue;
       float m = technique_weight(true, ls.pdf, scatter_pdf(v, ls.direction));
@@ -204,7 +204,7 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
     if (dot(d, v.ng) <= 0.0) break;
     vec3 fs = weight * pdf;
     g_rays++;
-    bool hit = trace_closest(spawn(v), d, 1e30, h);
+    bool hit = trace_closest(spawn(v), d, RAY_UNBOUNDED, h);
     Vertex w;
     float edge = 0.0;
     vec3 le = u_frame.environment.rgb;
@@ -294,7 +294,7 @@ vec3 stratified_mean(uvec2 pixel, uint index, uint g, uint first_stream, bool al
     primary_ray(camera_at(false, cs.time), vec2(pixel), cs.jitter, cs.lens, origin, dir);
     RayHit h;
     g_rays++;
-    if (!trace_closest(origin, dir, 1e30, h)) {
+    if (!trace_closest(origin, dir, RAY_UNBOUNDED, h)) {
       if (!albedo) sum += u_frame.environment.rgb;
       continue;
     }
@@ -309,7 +309,7 @@ vec3 stratified_mean(uvec2 pixel, uint index, uint g, uint first_stream, bool al
 // edges of bright, directly visible surfaces (a pixel that sees a light over 2% of its area
 // otherwise shows the whole light in 2% of its frames).
 vec3 direct_emission(uvec2 pixel, uint index) {
-  return stratified_mean(pixel, index, u_restir.direct_strata, RESTIR_MAX_INITIAL_CANDIDATES, false);
+  return stratified_mean(pixel, index, u_restir.direct_strata, RNG_STREAM_DIRECT_STRATA, false);
 }
 
 bool sees_emission(GpuPrimaryHit h) {
@@ -373,7 +373,7 @@ Edges neighbourhood_edges(uvec2 pixel) {
 // The mean albedo over G x G stratified camera samples (G = albedo_strata): its expectation is that
 // of the primary vertex's albedo.
 vec3 stratified_albedo(uvec2 pixel, uint index) {
-  return stratified_mean(pixel, index, u_restir.albedo_strata, RESTIR_MAX_INITIAL_CANDIDATES + 64u, true);
+  return stratified_mean(pixel, index, u_restir.albedo_strata, RNG_STREAM_ALBEDO_STRATA, true);
 }
 
 // The canonical sample of one deep domain of the compacted list (SPEC_DOMAIN_LIST): the same
@@ -389,10 +389,10 @@ void deep_domain_main() {
   g_selected = reservoir_empty();
   g_selected_f = vec3(0.0);
   g_primary_emission = vec3(0.0);
-  g_select_rng = rng_init(domain, 0x51EC7u, u_frame.frame_index, u_frame.seed);
+  g_select_rng = rng_init(domain, RNG_SALT_INITIAL_SELECT, u_frame.frame_index, u_frame.seed);
   float n_init = float(u_restir.initial_candidates);
   for (uint p = 0u; p < u_restir.initial_candidates; ++p)
-    trace_candidates(pixel, rng_key(domain, p, u_frame.frame_index, u_frame.seed), n_init);
+    trace_candidates(pixel, rng_key(domain, RNG_STREAM_PATH_FIRST + p, u_frame.frame_index, u_frame.seed), n_init);
   Reservoir r = g_selected;
   r.ucw = gris_ucw(g_state);  // RS-main Eq. 5
   r.p_hat = g_state.selected_p_hat;
@@ -422,11 +422,11 @@ void main() {
   g_selected = reservoir_empty();
   g_selected_f = vec3(0.0);
   g_primary_emission = vec3(0.0);
-  g_select_rng = rng_init(index, 0x51EC7u, u_frame.frame_index, u_frame.seed);
+  g_select_rng = rng_init(index, RNG_SALT_INITIAL_SELECT, u_frame.frame_index, u_frame.seed);
   uint candidates = initial_candidates_of(domain);
   float n_init = float(candidates);
   for (uint p = 0u; p < candidates; ++p)
-    trace_candidates(pixel, rng_key(index, p, u_frame.frame_index, u_frame.seed), n_init);
+    trace_candidates(pixel, rng_key(index, RNG_STREAM_PATH_FIRST + p, u_frame.frame_index, u_frame.seed), n_init);
 
   Reservoir r = g_selected;
   r.ucw = gris_ucw(g_state);  // RS-main Eq. 5

@@ -113,7 +113,7 @@ void main() {
   // nor one of its pairs, and seeing a surface like this pixel's; each slot draws up to
   // RESTIR_SPATIAL_TRIES candidates. A pixel that sees no surface has no path to reuse into and
   // takes no neighbours.
-  Rng rng = rng_init(pixel_index(pixel), 0x5A71A1u, u_frame.frame_index, u_frame.seed);
+  Rng rng = rng_init(pixel_index(pixel), RNG_SALT_SPATIAL, u_frame.frame_index, u_frame.seed);
   for (uint j = count; j < slots; ++j) {
     for (uint t = 0u; t < RESTIR_SPATIAL_TRIES; ++t) {
       vec2 o = sample_concentric_disk(rng_next_float2(rng)) * u_restir.spatial_radius;

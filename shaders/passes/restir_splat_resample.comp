@@ -98,7 +98,7 @@ Backprojection backproject_centre(GpuPrimaryHit centre, float cap) {
 struct BackupDomain {
   bool ok;
   uint layer;
-  float t_min;  // its depth range (0, 1e30 for the front layer)
+  float t_min;  // its depth range (0, RAY_UNBOUNDED for the front layer)
   float t_max;
 };
 
@@ -107,7 +107,7 @@ BackupDomain backup_domain_of(uint index, uint layer, Backprojection bp) {
   b.ok = false;
   b.layer = 0u;
   b.t_min = 0.0;
-  b.t_max = 1e30;
+  b.t_max = RAY_UNBOUNDED;
   if (!bp.ok) return b;
   if ((u_restir.flags & RESTIR_SPLAT_BACKUP) != 0u) {
     b.ok = true;
@@ -178,7 +178,7 @@ void main() {
   Reservoir xb = backup_domain ? unpack_reservoir(b_in[prev_domain_of(bp.backup, bd.layer)]) : reservoir_empty();
   float c_b = backup_domain ? alpha * confidence_capped(xb.confidence, cap) : 0.0;
 
-  Rng rng = rng_init(index, 0x5B1A7u, u_frame.frame_index, u_frame.seed);  // per domain (layer 0: the pixel)
+  Rng rng = rng_init(index, RNG_SALT_SPLAT_SELECT, u_frame.frame_index, u_frame.seed);  // per domain (layer 0: the pixel)
   GrisState st = gris_begin();
   Reservoir out_r = canonical;
   vec3 f = f_canonical;

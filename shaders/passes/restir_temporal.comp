@@ -190,7 +190,7 @@ void main() {
     w_h = valid && has_sample ? (c_h / total) * p_fw * history.ucw * jacobian : 0.0;
     w_c = (c_c / total) * canonical.p_hat * canonical.ucw;
   }
-  Rng rng = rng_init(pixel_index(pixel), 0x7E3A0u, u_frame.frame_index, u_frame.seed);
+  Rng rng = rng_init(pixel_index(pixel), RNG_SALT_TEMPORAL_SELECT, u_frame.frame_index, u_frame.seed);
   GrisState s = gris_begin();
   gris_stream_path(s, w_c, canonical.p_hat, f_canonical, c_c, 0u, rng_next_float(rng));
   gris_stream_path(s, w_h, p_fw, fw.f, c_h, 1u, rng_next_float(rng));

@@ -97,7 +97,7 @@ LayerWalk walk_to_point(bool prev, vec3 origin, vec3 dir, SurfacePoint target, f
   for (uint step = 0u; step < 2u * LAYERS_MAX + 2u; ++step) {
     RayHit h;
     w.rays++;
-    if (!trace_closest_in(prev, origin + dir * t0, dir, 1e30, h)) break;
+    if (!trace_closest_in(prev, origin + dir * t0, dir, RAY_UNBOUNDED, h)) break;
     float t = t0 + h.t;
     if (same_triangle(h, target) || (h.instance == target.instance && abs(t - dist) <= dist * LAYER_OCCLUDER_MARGIN)) {
       w.layer = step == 0u ? 0u : behind + 1u;
@@ -124,7 +124,7 @@ bool walk_to_layer(vec3 origin, vec3 dir, uint layer, out RayHit hit, inout uint
   float t0 = 0.0;
   for (uint step = 0u; step < 2u * LAYERS_MAX + 2u; ++step) {
     rays++;
-    if (!trace_closest(origin + dir * t0, dir, 1e30, hit)) return false;
+    if (!trace_closest(origin + dir * t0, dir, RAY_UNBOUNDED, hit)) return false;
     hit.t += t0;
     if (step > 0u && dot(load_hit(hit).geo_normal, dir) < 0.0 && ++behind == layer) return true;
     t0 = step_beyond(hit.t);

@@ -83,7 +83,7 @@ DomainPrimary domain_primary_free() {
   d.hit.lens = 0u;
   d.hit.time = 0.0;
   d.t_min = 0.0;
-  d.t_max = 1e30;
+  d.t_max = RAY_UNBOUNDED;
   d.check_x1 = false;
   d.x1 = surface_none();
   return d;
@@ -205,7 +205,7 @@ PathSample shifted_sample(PathSample y, ShiftResult s) {
 bool reconnection_visible(bool prev, Vertex v, vec3 d, float dist, bool to_environment, SurfacePoint xk, INOUT(uint) rays) {
   for (uint attempt = 0u; attempt < 2u; ++attempt) {
     bool any_hit = attempt == 0u;
-    float t_max = to_environment ? 1e30 : (any_hit ? dist * (1.0 - SHADOW_RAY_SHORTEN) : dist * (1.0 + RECONNECT_SELF_TOLERANCE));
+    float t_max = to_environment ? RAY_UNBOUNDED : (any_hit ? dist * (1.0 - SHADOW_RAY_SHORTEN) : dist * (1.0 + RECONNECT_SELF_TOLERANCE));
     RayHit h;
     rays++;
     bool hit = trace_query_in(prev, spawn(v), d, t_max, any_hit, h);
@@ -307,7 +307,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
     } else {
       r.rays++;
       float t0 = j == 0u ? dp.t_min : 0.0;  // a deep domain's primary ray starts at L_i (ML Eq. 4)
-      found = trace_closest_in(prev, origin + dir * t0, dir, j == 0u ? dp.t_max - t0 : 1e30, h);
+      found = trace_closest_in(prev, origin + dir * t0, dir, j == 0u ? dp.t_max - t0 : RAY_UNBOUNDED, h);
       if (j == 0u) {
         h.t += t0;
         r.primary_t = found ? h.t : 0.0;

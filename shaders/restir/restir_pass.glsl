@@ -9,6 +9,7 @@
 #include "restir/gris.h"
 #include "restir/reservoir.h"
 #include "restir/restir_data.h"
+#include "restir/rng_streams.h"
 
 layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
 layout(set = 0, binding = BINDING_RESTIR, std140) uniform Restir { GpuRestirConstants u_restir; };

@@ -36,7 +36,7 @@ struct ShiftJob {
   float camera_ratio;  // splat: |du/dv| of RS-main Eq. 14-16 (reprojection.h); gather: 1
   float time_ratio;    // splat: 1/K forward, K reverse (RS-main 4.4.3); gather: 1 (time kept)
   // Multi-layer splatting (restir/layers.glsl): the target domain's layer, the depth range its
-  // primary ray is restricted to (0 and 1e30 for the front layer), and x_1's camera distance.
+  // primary ray is restricted to (0 and RAY_UNBOUNDED for the front layer), and x_1's camera distance.
   uint layer;
   float t_min;
   float t_max;
@@ -63,7 +63,7 @@ ShiftJob splat_prepare(bool prev, PathSample y, uint time_partition) {
   job.camera_ratio = 0.0;
   job.layer = 0u;
   job.t_min = 0.0;
-  job.t_max = 1e30;
+  job.t_max = RAY_UNBOUNDED;
   job.distance = 0.0;
   job.ray_origin = vec3(0.0);
   job.ray_dir = vec3(0.0, 0.0, 1.0);
@@ -135,7 +135,7 @@ bool splat_deeper(INOUT(ShiftJob) job, ShiftResult failed) {
     if ((domain_range_in(job.prev, domain_in(job.prev, uvec2(job.pixel), w.layer)).flags & DOMAIN_ACTIVE) == 0u) return false;
     job.layer = w.layer;
     job.t_min = w.t_start;
-    job.t_max = 1e30;
+    job.t_max = RAY_UNBOUNDED;
     return true;
   }
   float l;
@@ -161,7 +161,7 @@ ShiftJob gather_prepare(bool prev, vec2 pixel, PathSample y) {
   job.time_ratio = 1.0;
   job.layer = 0u;
   job.t_min = 0.0;
-  job.t_max = 1e30;
+  job.t_max = RAY_UNBOUNDED;
   job.distance = 0.0;
   job.ray_origin = vec3(0.0);
   job.ray_dir = vec3(0.0, 0.0, 1.0);

@@ -144,7 +144,7 @@ SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {
       beta *= fs;
       r.suffix_density *= pdf;
     }
-    float t_max = light_sample && !isinf(ls.distance) ? ls.distance * (1.0 - SHADOW_RAY_SHORTEN) : 1e30;
+    float t_max = light_sample && !isinf(ls.distance) ? ls.distance * (1.0 - SHADOW_RAY_SHORTEN) : RAY_UNBOUNDED;
     RayHit h;
     r.rays++;
     bool hit = trace_query_in(prev, spawn(v), dir, t_max, light_sample, h);
