@@ -18,7 +18,6 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "restir/centre_surface.glsl"
 #include "restir/rng_streams.h"
 
-layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
 layout(set = 0, binding = BINDING_PRIMARY, std430) writeonly buffer Primary { GpuPrimaryHit b_primary[]; };
 
 #include "sampling/warp.h"
@@ -63,13 +62,13 @@ void main() {
     p.geometry = h.geometry;
     p.triangle = h.triangle;
     p.bary = h.bary;
-    p.lod = b_instances[h.instance].lod;
+    p.lod = instance_in(false, h.instance).lod;
     p.flags = PRIMARY_HIT;
     // Its surface in this frame, so that no later stage loads it from the mesh again.
     SurfaceHit s = load_hit(h);
     p.position_area = vec4(s.position, s.area);
     p.geo_normal_material = vec4(s.geo_normal, uintBitsToFloat(s.material));
-    p.shading_normal_kind = vec4(s.shading_normal, uintBitsToFloat(surface_kind(b_materials[s.material])));
+    p.shading_normal_kind = vec4(s.shading_normal, uintBitsToFloat(surface_kind(material_at(s))));
   }
   b_primary[index] = p;
 }

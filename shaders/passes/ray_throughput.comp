@@ -13,7 +13,6 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "sampling/rng.h"
 #include "sampling/warp.h"
 
-layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
 layout(push_constant) uniform Dispatch { GpuDispatchConstants u_dispatch; };
 layout(set = 0, binding = BINDING_COUNTERS, std430) buffer Counters { uint b_counters[]; };
 

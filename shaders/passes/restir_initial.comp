@@ -33,7 +33,6 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "sampling/russian_roulette.h"
 #include "restir/restir_pass.glsl"
 #include "restir/path_space.glsl"
-#include "sampling/light_sampling.glsl"
 #include "restir/restir_limits.h"
 #include "restir/centre_surface.glsl"
 #include "restir/layers.glsl"
@@ -57,7 +56,7 @@ uint initial_candidates_of(uint domain) {
   if (boost == 0u || (u_frame.history_flags & HISTORY_VALID) == 0u) return u_restir.initial_candidates;
   if (b_splat_offsets[domain + 1u] != b_splat_offsets[domain]) return u_restir.initial_candidates;
   if (multilayer() && (b_domains[domain].flags & DOMAIN_DISOCCLUDED) == 0u) return u_restir.initial_candidates;
-  atomicAdd(b_counters[COUNTER_DISOCCLUSION_BOOSTED], 1u);
+  counter_add(COUNTER_DISOCCLUSION_BOOSTED, 1u);
   return boost;
 }
 
@@ -122,7 +121,7 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
     found = trace_closest(origin, dir, RAY_UNBOUNDED, h);
   }
   if (!found) {
-    g_primary_emission += u_frame.environment.rgb / n_init;  // one segment: not resampled
+    g_primary_emission += environment_radiance(dir) / n_init;  // one segment: not resampled
     return;
   }
   Vertex v = domain_primary ? make_vertex(primary_surface_hit(ph), h, ph.lod, dir) : load_vertex(false, h, dir);
@@ -148,7 +147,7 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
       uint base = dim_vertex(i) + DIM_NEE + 3u * j;
       LightSample ls;
       vec3 ul = vec3(rng_dim(key, base), rng_dim(key, base + 1u), rng_dim(key, base + 2u));
-      if (!sample_light(v.position, ul, u_frame, ls)) continue;
+      if (!sample_light(v.position, ul, ls)) continue;
       // Grazing light samples are outside every path structure (path_vertex.glsl): energy at
       // |cos| < SHIFT_MIN_COS, a 1e-6 fraction of a Lambertian emitter's output, is not sampled by NEE.
       if (!isinf(ls.distance) && ls.cos_light < SHIFT_MIN_COS) continue;
@@ -186,7 +185,7 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
           c.xk.geometry = ls.geometry;
           c.xk.triangle = ls.triangle;
           c.xk.bary = ls.bary;
-          c.xk.lod = b_instances[ls.instance].lod;
+          c.xk.lod = instance_in(false, ls.instance).lod;
           c.density = pdf_replay / (ls.cos_light / (ls.distance * ls.distance) * ls.area);
         }
       }
@@ -207,7 +206,7 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
     bool hit = trace_closest(spawn(v), d, RAY_UNBOUNDED, h);
     Vertex w;
     float edge = 0.0;
-    vec3 le = u_frame.environment.rgb;
+    vec3 le = environment_radiance(d);
     float pl = light_pdf_environment(false);
     if (hit) {
       w = load_vertex(false, h, d);
@@ -295,7 +294,7 @@ vec3 stratified_mean(uvec2 pixel, uint index, uint g, uint first_stream, bool al
     RayHit h;
     g_rays++;
     if (!trace_closest(origin, dir, RAY_UNBOUNDED, h)) {
-      if (!albedo) sum += u_frame.environment.rgb;
+      if (!albedo) sum += environment_radiance(dir);
       continue;
     }
     Vertex v = load_vertex(false, h, dir);
@@ -313,14 +312,13 @@ vec3 direct_emission(uvec2 pixel, uint index) {
 }
 
 bool sees_emission(GpuPrimaryHit h) {
-  if ((h.flags & PRIMARY_HIT) == 0u) return luminance(u_frame.environment.rgb) > 0.0;
+  if ((h.flags & PRIMARY_HIT) == 0u) return environment_emits();
   return (floatBitsToUint(h.shading_normal_kind.w) & SURFACE_KIND_EMISSIVE) != 0u;
 }
 
 vec3 primary_albedo(GpuPrimaryHit e) {
   if ((e.flags & PRIMARY_HIT) == 0u) return vec3(0.0);
-  GpuMaterial m = b_materials[floatBitsToUint(e.geo_normal_material.w)];
-  return cv_albedo(make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular));
+  return cv_albedo(material_at(primary_surface_hit(e)).bsdf);
 }
 
 // What this pixel's 8 neighbours' visibility-buffer entries say about the edges it may straddle,
@@ -404,9 +402,9 @@ void deep_domain_main() {
     f = vec3(0.0);
   }
   store_output(domain, r, f, g_state.estimate);
-  if (g_state.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], g_state.rejected);
-  atomicAdd(b_counters[COUNTER_RAYS_INITIAL], g_rays);
-  atomicAdd(b_counters[COUNTER_PATHS], u_restir.initial_candidates);
+  if (g_state.rejected > 0u) counter_add(COUNTER_NONFINITE_REJECTED, g_state.rejected);
+  counter_add(COUNTER_RAYS_INITIAL, g_rays);
+  counter_add(COUNTER_PATHS, u_restir.initial_candidates);
 }
 
 void main() {
@@ -462,7 +460,7 @@ void main() {
     b_contribution[contribution_cv_delta_index(index, domains, pixels)] = delta;
     b_contribution[contribution_cv_albedo_index(index, domains, pixels)] = vec4(a1, 0.0);
   }
-  if (g_state.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], g_state.rejected);
-  atomicAdd(b_counters[COUNTER_RAYS_INITIAL], g_rays);
-  atomicAdd(b_counters[COUNTER_PATHS], candidates);
+  if (g_state.rejected > 0u) counter_add(COUNTER_NONFINITE_REJECTED, g_state.rejected);
+  counter_add(COUNTER_RAYS_INITIAL, g_rays);
+  counter_add(COUNTER_PATHS, candidates);
 }

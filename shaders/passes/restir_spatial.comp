@@ -137,7 +137,7 @@ void main() {
     c_nb[j] = confidence_of(unpack_reservoir(b_in[nb[j]]), nb[j]);
     c_total += c_nb[j];
   }
-  if (filtered > 0u) atomicAdd(b_counters[COUNTER_SPATIAL_FILTERED], filtered);
+  if (filtered > 0u) counter_add(COUNTER_SPATIAL_FILTERED, filtered);
   if (u_restir.colour_cv > 0.0) {
     // The colour control variate (restir_shade.comp) must not take its colour from a pixel whose
     // reservoir this one reuses: mark the neighbours inside its window.
@@ -209,8 +209,8 @@ void main() {
     } else if (run) {
       res = shift_path(false, vec2(tp), domain_primary(b_primary[pixel_index(tp)]), y, false);
       g_rays += res.rays;
-      atomicAdd(b_counters[COUNTER_SPATIAL_SHIFTS], 1u);
-      if (res.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_SPATIAL_FAIL + res.reason], 1u);
+      counter_add(COUNTER_SPATIAL_SHIFTS, 1u);
+      if (res.reason != SHIFT_OK) counter_add(COUNTER_SPATIAL_FAIL + res.reason, 1u);
     }
     bool ok = run && res.reason == SHIFT_OK;
     if (sub == 0u) {
@@ -257,7 +257,7 @@ void main() {
 
   Reservoir out_r = selected;
   vec3 f = f_selected;
-  if (took_neighbour) atomicAdd(b_counters[COUNTER_SPATIAL_SELECTED], 1u);
+  if (took_neighbour) counter_add(COUNTER_SPATIAL_SELECTED, 1u);
   out_r.p_hat = st.selected_p_hat;
   out_r.ucw = gris_ucw(st);  // RS-main Eq. 5
   out_r.confidence = st.confidence;
@@ -266,7 +266,7 @@ void main() {
     out_r.confidence = st.confidence;
     f = vec3(0.0);
   }
-  if (st.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], st.rejected);
+  if (st.rejected > 0u) counter_add(COUNTER_NONFINITE_REJECTED, st.rejected);
   store_output(index, out_r, f, st.estimate);
-  atomicAdd(b_counters[COUNTER_RAYS_SPATIAL], g_rays);
+  counter_add(COUNTER_RAYS_SPATIAL, g_rays);
 }

@@ -135,9 +135,9 @@ uint next_splat(uint first, uint last, uint after, bool first_pick) {
 }
 
 void count_shift(ShiftResult r) {
-  atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
-  atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], r.rays);
-  if (r.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + r.reason], 1u);
+  counter_add(COUNTER_TEMPORAL_SHIFTS, 1u);
+  counter_add(COUNTER_RAYS_TEMPORAL, r.rays);
+  if (r.reason != SHIFT_OK) counter_add(COUNTER_TEMPORAL_FAIL + r.reason, 1u);
   count_suffix(r, COUNTER_RAYS_REPLAY_RESAMPLE);
 }
 
@@ -232,7 +232,7 @@ void main() {
       run = deeper.ok && splat_deeper(deeper, job == 1u ? reverse_result : reverse_b_result);
       if (run) {
         sj = deeper;
-        atomicAdd(b_counters[k_layer_stepping ? COUNTER_SPLAT_STEP_RAYS : COUNTER_SPLAT_RANGE_RAYS], 1u);  // the query after the layer test
+        counter_add(k_layer_stepping ? COUNTER_SPLAT_STEP_RAYS : COUNTER_SPLAT_RANGE_RAYS, 1u);  // the query after the layer test
       }
     } else if (job == 3u) {
       run = backup_domain && reservoir_valid(xb);
@@ -298,16 +298,16 @@ void main() {
   // previous deep domain reached, or the deep backup's sample.
   bool deep_backup_in = backup_domain && bd.layer != 0u && j_b > 0.0;
   if (multilayer() && layer == 0u && (from_deep || deep_backup_in) && (b_domains[index].flags & DOMAIN_DISOCCLUDED) != 0u) {
-    atomicAdd(b_counters[COUNTER_DISOCCLUDED_COVERED], 1u);
-    if (from_deep) atomicAdd(b_counters[COUNTER_DISOCCLUDED_SPLATTED], 1u);
-    if (deep_backup_in) atomicAdd(b_counters[COUNTER_DISOCCLUDED_BACKUP], 1u);
+    counter_add(COUNTER_DISOCCLUDED_COVERED, 1u);
+    if (from_deep) counter_add(COUNTER_DISOCCLUDED_SPLATTED, 1u);
+    if (deep_backup_in) counter_add(COUNTER_DISOCCLUDED_BACKUP, 1u);
     atomicOr(b_domains[index].flags, DOMAIN_COVERED);  // the domain map's "covered" (render/restir/domain_map.cpp)
   }
-  if (st.selected != 0u && st.selected != GRIS_NONE) atomicAdd(b_counters[COUNTER_TEMPORAL_SELECTED], 1u);
-  if (st.selected == 1u) atomicAdd(b_counters[COUNTER_SPLAT_BACKUP_SELECTED], 1u);
-  if (last == first && layer == 0u) atomicAdd(b_counters[COUNTER_TEMPORAL_NO_HISTORY], 1u);  // a hole: no splat landed here
-  atomicAdd(b_counters[COUNTER_SPLATS_LANDED], last - first);
-  atomicMax(b_counters[COUNTER_SPLATS_MAX], last - first);
+  if (st.selected != 0u && st.selected != GRIS_NONE) counter_add(COUNTER_TEMPORAL_SELECTED, 1u);
+  if (st.selected == 1u) counter_add(COUNTER_SPLAT_BACKUP_SELECTED, 1u);
+  if (last == first && layer == 0u) counter_add(COUNTER_TEMPORAL_NO_HISTORY, 1u);  // a hole: no splat landed here
+  counter_add(COUNTER_SPLATS_LANDED, last - first);
+  counter_max(COUNTER_SPLATS_MAX, last - first);
   out_r.p_hat = st.selected_p_hat;
   out_r.ucw = gris_ucw(st);  // RS-main Eq. 5
   // RS-main Eq. 17 (with the backup, its confidence is added too).
@@ -319,6 +319,6 @@ void main() {
     out_r.confidence = c;
     f = vec3(0.0);
   }
-  if (st.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], st.rejected);
+  if (st.rejected > 0u) counter_add(COUNTER_NONFINITE_REJECTED, st.rejected);
   store_output(index, out_r, f, st.estimate);
 }

@@ -28,8 +28,8 @@ uint g_rays = 0u;
 
 void count_shift(ShiftResult s) {
   g_rays += s.rays;
-  atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
-  if (s.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + s.reason], 1u);
+  counter_add(COUNTER_TEMPORAL_SHIFTS, 1u);
+  if (s.reason != SHIFT_OK) counter_add(COUNTER_TEMPORAL_FAIL + s.reason, 1u);
   count_suffix(s, COUNTER_RAYS_REPLAY);
 }
 
@@ -134,8 +134,8 @@ void main() {
   uvec2 q = bp.q;
   if (have_history) history = unpack_reservoir(b_in[prev_domain_of(q, 0u)]);
   if (!have_history || !(history.confidence > 0.0)) {
-    atomicAdd(b_counters[COUNTER_TEMPORAL_NO_HISTORY], 1u);
-    atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], g_rays);
+    counter_add(COUNTER_TEMPORAL_NO_HISTORY, 1u);
+    counter_add(COUNTER_RAYS_TEMPORAL, g_rays);
     return;  // the canonical reservoir and its estimate stay in place
   }
   bool moved = (u_frame.history_flags & HISTORY_SCENE_MOVED) != 0u;
@@ -184,7 +184,7 @@ void main() {
     // the tutorial's M_prev does.
     bool has_sample = reservoir_valid(history);
     bool valid = has_sample ? (p_fw > 0.0 && heuristic_valid(bp, p_fw, history.p_hat)) : heuristic_valid(bp, 1.0, 1.0);
-    if (!valid) atomicAdd(b_counters[COUNTER_TEMPORAL_INVALID], 1u);
+    if (!valid) counter_add(COUNTER_TEMPORAL_INVALID, 1u);
     if (!valid) c_h = 0.0;  // refused: neither its sample nor its confidence is merged
     float total = c_c + c_h;
     w_h = valid && has_sample ? (c_h / total) * p_fw * history.ucw * jacobian : 0.0;
@@ -200,7 +200,7 @@ void main() {
     out_r = history;
     out_r.y = shifted_sample(history.y, fw);
     f = fw.f;
-    atomicAdd(b_counters[COUNTER_TEMPORAL_SELECTED], 1u);
+    counter_add(COUNTER_TEMPORAL_SELECTED, 1u);
   }
   out_r.p_hat = s.selected_p_hat;
   out_r.ucw = gris_ucw(s);  // RS-main Eq. 5
@@ -210,7 +210,7 @@ void main() {
     out_r.confidence = s.confidence;
     f = vec3(0.0);
   }
-  if (s.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], s.rejected);
+  if (s.rejected > 0u) counter_add(COUNTER_NONFINITE_REJECTED, s.rejected);
   store_output(index, out_r, f, s.estimate);
-  atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], g_rays);
+  counter_add(COUNTER_RAYS_TEMPORAL, g_rays);
 }

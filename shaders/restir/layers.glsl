@@ -25,7 +25,7 @@ layout(constant_id = SPEC_LAYER_STEPPING) const bool k_layer_stepping = false;
 // surface found at float precision.
 const float LAYER_OCCLUDER_MARGIN = 1e-3;
 
-bool multilayer() { return u_restir.layers > 1u; }
+bool multilayer() { return restir_layers() > 1u; }
 
 GpuDomainRange domain_range_in(bool prev, uint d) {
 #ifdef STRATA_HISTORY
@@ -42,7 +42,7 @@ uint domain_in(bool prev, uvec2 pixel, uint layer) { return prev ? prev_domain_o
 uint deep_layer_by_range(bool prev, uvec2 pixel, float d, out float range_min, out float range_max) {
   range_min = 0.0;
   range_max = 0.0;
-  for (uint i = 1u; i < u_restir.layers; ++i) {
+  for (uint i = 1u; i < restir_layers(); ++i) {
     GpuDomainRange r = domain_range_in(prev, domain_in(prev, pixel, i));
     if ((r.flags & DOMAIN_ACTIVE) != 0u && d >= r.range_min && d <= r.range_max) {
       range_min = r.range_min;
@@ -57,7 +57,7 @@ uint deep_layer_by_range(bool prev, uvec2 pixel, float d, out float range_min, o
 // LAYERS_MAX when none does. Reads ranges only (no ray): the confidence lookups of RS-main Eq. 17
 // for a representative hit moved back to the previous frame.
 uint layer_by_range(bool prev, uvec2 pixel, float d) {
-  for (uint i = 0u; i < u_restir.layers; ++i) {
+  for (uint i = 0u; i < restir_layers(); ++i) {
     GpuDomainRange r = domain_range_in(prev, domain_in(prev, pixel, i));
     if ((r.flags & DOMAIN_ACTIVE) != 0u && d >= r.range_min && d <= r.range_max) return i;
   }
@@ -110,7 +110,7 @@ LayerWalk walk_to_point(bool prev, vec3 origin, vec3 dir, SurfacePoint target, f
     } else if (dot(load_hit_in(prev, h).geo_normal, dir) < 0.0) {
       behind++;
       w.occluder = h.instance;
-      if (behind + 1u >= u_restir.layers) break;  // deeper than the k layers
+      if (behind + 1u >= restir_layers()) break;  // deeper than the k layers
     }
     t0 = step_beyond(t);
   }
