@@ -1,5 +1,8 @@
-// The bridge between the passes (and the ReSTIR library) and the scene: tracing, hit loading,
-// materials and emitter records. Passes include this; nothing else touches the scene bindings.
+// The scene bridge (docs/ARCHITECTURE.md, "The scene bridge"): the one place that reads the scene's
+// bindings and traces rays. Tracing in either frame, hit loading, the surface resolver, materials
+// (material_at), and, in include/scene_lights.glsl which this file includes, light sampling, light
+// densities and the environment. The passes and the ReSTIR library (shaders/restir) call these
+// functions; nothing else declares a scene binding or calls rayQuery*.
 #ifndef STRATA_SCENE_BRIDGE_GLSL
 #define STRATA_SCENE_BRIDGE_GLSL
 #extension GL_EXT_ray_query : require

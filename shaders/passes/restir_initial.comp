@@ -286,7 +286,7 @@ vec3 cv_albedo(BsdfParams b) { return b.diffuse + b.f0; }
 vec3 stratified_mean(uvec2 pixel, uint index, uint g, uint first_stream, bool albedo) {
   vec3 sum = vec3(0.0);
   for (uint s = 0u; s < g * g; ++s) {
-    CameraSample cs = camera_sample(rng_key(index, first_stream + s, u_frame.frame_index, u_frame.seed));
+    CameraSample cs = camera_sample(frame_key(index, first_stream + s));
     cs.jitter = (vec2(float(s % g), float(s / g)) + cs.jitter) / float(g);
     vec3 origin;
     vec3 dir;
@@ -374,6 +374,24 @@ vec3 stratified_albedo(uvec2 pixel, uint index) {
   return stratified_mean(pixel, index, u_restir.albedo_strata, RNG_STREAM_ALBEDO_STRATA, true);
 }
 
+// The canonical reservoir: the selected candidate with its p-hat and W (RS-main Eq. 5) and
+// confidence 1 (one domain's candidates), and f(Y) in `f`; empty, with confidence 1, where W is not
+// positive. (The resampling passes' finalise_reservoir differs: they keep a selected sample whose W
+// is 0, and their confidence is a sum.)
+Reservoir canonical_reservoir(out vec3 f) {
+  Reservoir r = g_selected;
+  r.ucw = gris_ucw(g_state);  // RS-main Eq. 5
+  r.p_hat = g_state.selected_p_hat;
+  r.confidence = 1.0;
+  f = g_selected_f;
+  if (!(r.ucw > 0.0)) {
+    r = reservoir_empty();
+    r.confidence = 1.0;
+    f = vec3(0.0);
+  }
+  return r;
+}
+
 // The canonical sample of one deep domain of the compacted list (SPEC_DOMAIN_LIST): the same
 // estimator with its own random streams (keyed by the domain index) and the domain's depth range.
 void deep_domain_main() {
@@ -387,20 +405,12 @@ void deep_domain_main() {
   g_selected = reservoir_empty();
   g_selected_f = vec3(0.0);
   g_primary_emission = vec3(0.0);
-  g_select_rng = rng_init(domain, RNG_SALT_INITIAL_SELECT, u_frame.frame_index, u_frame.seed);
+  g_select_rng = frame_rng(domain, RNG_SALT_INITIAL_SELECT);
   float n_init = float(u_restir.initial_candidates);
   for (uint p = 0u; p < u_restir.initial_candidates; ++p)
-    trace_candidates(pixel, rng_key(domain, RNG_STREAM_PATH_FIRST + p, u_frame.frame_index, u_frame.seed), n_init);
-  Reservoir r = g_selected;
-  r.ucw = gris_ucw(g_state);  // RS-main Eq. 5
-  r.p_hat = g_state.selected_p_hat;
-  r.confidence = 1.0;
-  vec3 f = g_selected_f;
-  if (!(r.ucw > 0.0)) {
-    r = reservoir_empty();
-    r.confidence = 1.0;
-    f = vec3(0.0);
-  }
+    trace_candidates(pixel, frame_key(domain, RNG_STREAM_PATH_FIRST + p), n_init);
+  vec3 f;
+  Reservoir r = canonical_reservoir(f);
   store_output(domain, r, f, g_state.estimate);
   if (g_state.rejected > 0u) counter_add(COUNTER_NONFINITE_REJECTED, g_state.rejected);
   counter_add(COUNTER_RAYS_INITIAL, g_rays);
@@ -420,22 +430,14 @@ void main() {
   g_selected = reservoir_empty();
   g_selected_f = vec3(0.0);
   g_primary_emission = vec3(0.0);
-  g_select_rng = rng_init(index, RNG_SALT_INITIAL_SELECT, u_frame.frame_index, u_frame.seed);
+  g_select_rng = frame_rng(index, RNG_SALT_INITIAL_SELECT);
   uint candidates = initial_candidates_of(domain);
   float n_init = float(candidates);
   for (uint p = 0u; p < candidates; ++p)
-    trace_candidates(pixel, rng_key(index, RNG_STREAM_PATH_FIRST + p, u_frame.frame_index, u_frame.seed), n_init);
+    trace_candidates(pixel, frame_key(index, RNG_STREAM_PATH_FIRST + p), n_init);
 
-  Reservoir r = g_selected;
-  r.ucw = gris_ucw(g_state);  // RS-main Eq. 5
-  r.p_hat = g_state.selected_p_hat;
-  r.confidence = 1.0;
-  vec3 f = g_selected_f;
-  if (!(r.ucw > 0.0)) {
-    r = reservoir_empty();
-    r.confidence = 1.0;
-    f = vec3(0.0);
-  }
+  vec3 f;
+  Reservoir r = canonical_reservoir(f);
   Edges edges;
   edges.emission = false;
   edges.albedo = false;

@@ -132,4 +132,23 @@ void store_output(uint index, Reservoir r, vec3 f, vec3 estimate) {
   b_contribution[estimate_index(index)] = vec4(estimate, 0.0);
 }
 
+// The last step of every resampling pass (temporal, spatial, splat_resample): the output reservoir
+// of domain `index` is the selected candidate `selected` (its f(Y) `f`) with the stream's p-hat of
+// it and its unbiased contribution weight W = (1 / p-hat(Y)) sum_i w_i (RS-main Eq. 5), and
+// `confidence`; empty, keeping the confidence, when the stream selected nothing. It is written
+// with the domain's estimate over the stream's candidates (store_output).
+void finalise_reservoir(uint index, GrisState st, Reservoir selected, vec3 f, float confidence) {
+  Reservoir r = selected;
+  r.p_hat = st.selected_p_hat;
+  r.ucw = gris_ucw(st);  // RS-main Eq. 5
+  r.confidence = confidence;
+  if (st.selected == GRIS_NONE) {
+    r = reservoir_empty();
+    r.confidence = confidence;
+    f = vec3(0.0);
+  }
+  if (st.rejected > 0u) counter_add(COUNTER_NONFINITE_REJECTED, st.rejected);
+  store_output(index, r, f, st.estimate);
+}
+
 #endif
