@@ -1,11 +1,16 @@
-// The bridge between the passes (and the ReSTIR library) and the scene: tracing, hit loading,
-// materials and emitter records. Passes include this; nothing else touches the scene bindings.
+// The scene bridge (docs/ARCHITECTURE.md, "The scene bridge"): the one place that reads the scene's
+// bindings and traces rays. Tracing in either frame, hit loading, the surface resolver, materials
+// (material_at), and, in include/scene_lights.glsl which this file includes, light sampling, light
+// densities and the environment. The passes and the ReSTIR library (shaders/restir) call these
+// functions; nothing else declares a scene binding or calls rayQuery*.
 #ifndef STRATA_SCENE_BRIDGE_GLSL
 #define STRATA_SCENE_BRIDGE_GLSL
 #extension GL_EXT_ray_query : require
 
 #include "include/bindings.h"
+#include "include/frame_data.h"
 #include "include/scene_data.h"
+#include "material/bsdf.h"
 #include "restir/lod_mapping.h"
 #include "restir/primary_data.h"
 #include "restir/reservoir.h"
@@ -17,9 +22,10 @@ layout(set = 0, binding = BINDING_INDICES, std430) readonly buffer Indices { uin
 layout(set = 0, binding = BINDING_PRIMITIVES, std430) readonly buffer Primitives { GpuPrimitive b_primitives[]; };
 layout(set = 0, binding = BINDING_INSTANCES, std430) readonly buffer Instances { GpuInstance b_instances[]; };
 layout(set = 0, binding = BINDING_MATERIALS, std430) readonly buffer Materials { GpuMaterial b_materials[]; };
-
-// Whether a material emits light (the emissive material kind).
-bool material_emits(GpuMaterial m) { return any(greaterThan(m.emission_roughness.rgb, vec3(0.0))); }
+// The frame's constants: camera, image, light totals, environment (include/frame_data.h). Declared
+// here because the lights read them; the passes read them too, the ReSTIR library through its
+// context (restir/context.glsl).
+layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
 
 // What a ray query reports: enough to reload the hit later (a path sample stores exactly this).
 struct RayHit {
@@ -102,6 +108,33 @@ SurfaceHit load_hit_with(GpuInstance inst, RayHit h) {
 
 SurfaceHit load_hit(RayHit h) { return load_hit_with(b_instances[h.instance], h); }
 
+// The material of a surface, read once here: every BSDF evaluation, sample and density
+// (material/bsdf.h: bsdf_eval_cos, bsdf_sample, bsdf_pdf on `bsdf`) and every emission the passes
+// and the ReSTIR library compute reads this record, never the material buffer. A texture lookup
+// at the hit belongs in material_at.
+struct SurfaceMaterial {
+  BsdfParams bsdf;
+  float metallic;
+  vec3 emission;      // radiance leaving the front face (and the back face when double_sided)
+  bool double_sided;
+};
+
+SurfaceMaterial material_of(uint material) {
+  GpuMaterial m = b_materials[material];
+  SurfaceMaterial s;
+  s.bsdf = make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular);
+  s.metallic = m.base_color_metallic.a;
+  s.emission = m.emission_roughness.rgb;
+  s.double_sided = (m.flags & MATERIAL_DOUBLE_SIDED) != 0u;
+  return s;
+}
+
+// The material at a surface hit (a loaded hit, or a visibility-buffer entry's: primary_surface_hit).
+SurfaceMaterial material_at(SurfaceHit s) { return material_of(s.material); }
+
+// Whether a material emits light (the emissive material kind).
+bool material_emits(SurfaceMaterial m) { return any(greaterThan(m.emission, vec3(0.0))); }
+
 // The same queries in either frame: `prev` selects the previous frame's TLAS and instance records
 // (bound only in passes compiled with STRATA_HISTORY; elsewhere there is one frame).
 #ifdef STRATA_HISTORY
@@ -154,17 +187,22 @@ bool trace_closest_in(bool prev, vec3 origin, vec3 dir, float t_max, out RayHit 
 // Either kind of query in either frame through one traversal: the closest hit, or with `any_hit`
 // whether anything blocks the segment (then `hit` is some hit on it). A loop that needs both
 // kinds traces at a single call site (lavapipe inlines the traversal of each rayQueryProceedEXT).
-bool trace_query_in(bool prev, vec3 origin, vec3 dir, float t_max, bool any_hit, out RayHit hit) {
+// The segment is [t_min, t_max] along dir (trace_span; the ray probe pass takes t_min from the host).
+bool trace_span(bool prev, vec3 origin, float t_min, vec3 dir, float t_max, bool any_hit, out RayHit hit) {
   uint flags = gl_RayFlagsOpaqueEXT | (any_hit ? gl_RayFlagsTerminateOnFirstHitEXT : 0u);
   rayQueryEXT rq;
 #ifdef STRATA_HISTORY
-  if (prev) rayQueryInitializeEXT(rq, u_tlas_prev, flags, 0xFF, origin, 0.0, dir, t_max);
+  if (prev) rayQueryInitializeEXT(rq, u_tlas_prev, flags, 0xFF, origin, t_min, dir, t_max);
   else
 #endif
-    rayQueryInitializeEXT(rq, u_tlas, flags, 0xFF, origin, 0.0, dir, t_max);
+    rayQueryInitializeEXT(rq, u_tlas, flags, 0xFF, origin, t_min, dir, t_max);
   while (rayQueryProceedEXT(rq)) {
   }
   return committed_hit(rq, hit);
+}
+
+bool trace_query_in(bool prev, vec3 origin, vec3 dir, float t_max, bool any_hit, out RayHit hit) {
+  return trace_span(prev, origin, 0.0, dir, t_max, any_hit, hit);
 }
 
 SurfaceHit load_hit_in(bool prev, RayHit h) { return load_hit_with(instance_in(prev, h.instance), h); }
@@ -400,5 +438,7 @@ SurfacePoint primary_surface(GpuPrimaryHit h) {
   p.lod = h.lod;
   return p;
 }
+
+#include "include/scene_lights.glsl"
 
 #endif

@@ -16,7 +16,6 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #define STRATA_HISTORY 1
 #include "include/scene_bridge.glsl"
 
-layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
 layout(set = 0, binding = BINDING_DISOCCLUSION, std430) writeonly buffer Mask { uint b_mask[]; };
 layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
 

@@ -178,14 +178,14 @@ GpuPrimaryHit entry_of(RayHit h, float t, SurfaceHit s) {
   p.geometry = h.geometry;
   p.triangle = h.triangle;
   p.bary = h.bary;
-  p.lod = b_instances[h.instance].lod;
+  p.lod = instance_in(false, h.instance).lod;
   p.flags = PRIMARY_HIT;
   p.jitter = vec2(0.5);
   p.lens = packUnorm2x16(vec2(0.5));
   p.time = 1.0;
   p.position_area = vec4(s.position, s.area);
   p.geo_normal_material = vec4(s.geo_normal, uintBitsToFloat(s.material));
-  p.shading_normal_kind = vec4(s.shading_normal, uintBitsToFloat(surface_kind(b_materials[s.material])));
+  p.shading_normal_kind = vec4(s.shading_normal, uintBitsToFloat(surface_kind(material_at(s))));
   return p;
 }
 
@@ -217,7 +217,7 @@ void main() {
     for (uint step = 0u; step < 2u * LAYERS_MAX && found <= needed; ++step) {
       RayHit h;
       rays++;
-      if (!trace_closest(origin + dir * t0, dir, 1e30, h)) break;
+      if (!trace_closest(origin + dir * t0, dir, RAY_UNBOUNDED, h)) break;
       float t = t0 + h.t;
       SurfaceHit s = load_hit(h);
       if (dot(s.geo_normal, dir) < 0.0) {  // a front face: the next layer's representative hit
@@ -234,10 +234,10 @@ void main() {
   bool front_moved_back = false;
   vec2 front_before;
   bool front_disoccluded = front_hit && disoccluded(front, rays, held, front_moved_back, front_before);
-  if (front_disoccluded) atomicAdd(b_counters[COUNTER_DISOCCLUDED], 1u);
-  if (held) atomicAdd(b_counters[COUNTER_DISOCCLUDED_HELD], 1u);
-  atomicAdd(b_counters[COUNTER_RAYS_DOMAIN_INIT], rays);
-  if (census && found > 1u) atomicAdd(b_counters[COUNTER_DOMAINS_UNIFORM], (found - 1u) * (uniform_mode ? 1u : stride * stride));
+  if (front_disoccluded) counter_add(COUNTER_DISOCCLUDED, 1u);
+  if (held) counter_add(COUNTER_DISOCCLUDED_HELD, 1u);
+  counter_add(COUNTER_RAYS_DOMAIN_INIT, rays);
+  if (census && found > 1u) counter_add(COUNTER_DOMAINS_UNIFORM, (found - 1u) * (uniform_mode ? 1u : stride * stride));
   // A census pixel walks deeper than its domains need: the layers beyond are counted only, so that
   // its domains (hits, ranges, activation) are what any other pixel's would be.
   if (!uniform_mode) found = min(found, own + 1u);
@@ -281,7 +281,7 @@ void main() {
         if (m.occluder_min != OCCLUDER_NONE) {
           // ML Sec. 5: activated only when the propagated hit's occluder is this hit's occluder.
           if (r.occluder == m.occluder_min || r.occluder == ~m.occluder_max) r.flags |= DOMAIN_ACTIVE | DOMAIN_PROPAGATES;
-          else atomicAdd(b_counters[COUNTER_DOMAINS_OCCLUDER], 1u);
+          else counter_add(COUNTER_DOMAINS_OCCLUDER, 1u);
         }
       }
     } else if (i > 0u) {

@@ -64,7 +64,7 @@ void main() {
     occluder = b_domains_prev[d].occluder;
   } else {
     LayerWalk w = walk_to_point(false, origin, dir, c, dist);  // ML Fig. 2
-    atomicAdd(b_counters[COUNTER_RAYS_DOMAIN_INIT], w.rays);
+    counter_add(COUNTER_RAYS_DOMAIN_INIT, w.rays);
     found = w.layer;
     occluder = w.occluder;
   }

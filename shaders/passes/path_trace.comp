@@ -15,7 +15,6 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "sampling/emitter_pdf.h"
 #include "sampling/russian_roulette.h"
 #include "material/bsdf.h"
-#include "sampling/light_sampling.glsl"
 #include "sampling/mis.h"
 #include "sampling/rng.h"
 #include "sampling/warp.h"
@@ -25,7 +24,6 @@ layout(constant_id = SPEC_ENV_NEE) const bool k_env_nee = false;
 layout(constant_id = SPEC_EMITTERS) const bool k_emitters = true;
 layout(constant_id = SPEC_MOTION_BLUR) const bool k_motion_blur = false;
 
-layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
 layout(push_constant) uniform Dispatch { GpuDispatchConstants u_dispatch; };
 layout(set = 0, binding = BINDING_COUNTERS, std430) buffer Counters { uint b_counters[]; };
 layout(set = 0, binding = BINDING_ACCUM, std430) buffer Accum { vec4 b_accum[]; };
@@ -58,24 +56,23 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
 
   for (uint depth = 1u; depth <= u_frame.max_depth; ++depth) {
     RayHit rh;
-    if (!trace_closest(origin, dir, 1e30, rh)) {
+    if (!trace_closest(origin, dir, RAY_UNBOUNDED, rh)) {
       float w = 1.0;
-      if (k_env_nee && prev_bsdf_pdf > 0.0) w = mis_power(prev_bsdf_pdf, environment_pdf(u_frame));
-      radiance += throughput * u_frame.environment.rgb * w;
+      if (k_env_nee && prev_bsdf_pdf > 0.0) w = mis_power(prev_bsdf_pdf, environment_pdf());
+      radiance += throughput * environment_radiance(dir) * w;
       break;
     }
     SurfaceHit s = load_hit(rh);
-    GpuMaterial m = b_materials[s.material];
-    bool double_sided = (m.flags & MATERIAL_DOUBLE_SIDED) != 0u;
+    SurfaceMaterial m = material_at(s);
+    bool double_sided = m.double_sided;
     float cos_hit = dot(s.geo_normal, -dir);
     bool front = cos_hit > 0.0;
 
-    vec3 emission = m.emission_roughness.rgb;
+    vec3 emission = m.emission;
     if (any(greaterThan(emission, vec3(0.0))) && (front || double_sided)) {
       float w = 1.0;
       if (k_emitters && prev_bsdf_pdf > 0.0) {
-        w = mis_power(prev_bsdf_pdf, emitter_solid_angle_pdf(u_frame.total_emitter_power, u_frame.env_select_prob, emission,
-                                                             s.area, double_sided, rh.t, cos_hit));
+        w = mis_power(prev_bsdf_pdf, emitter_light_pdf(false, emission, s.area, double_sided, rh.t, cos_hit));
       }
       radiance += throughput * emission * w;
     }
@@ -88,18 +85,18 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     vec3 b;
     make_onb(ns, t, b);
     vec3 wo = to_local(-dir, t, b, ns);
-    BsdfParams bsdf = make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular);
+    BsdfParams bsdf = m.bsdf;
     vec3 x = offset_ray_origin(s.position, ng);
 
     // Next-event estimation, MIS-weighted against BSDF sampling.
     if (k_emitters || k_env_nee) {
       LightSample ls;
       vec3 ul = vec3(rng_next_float2(rng), rng_next_float(rng));
-      if (sample_light(s.position, ul, u_frame, ls) && dot(ls.direction, ng) > 0.0) {
+      if (sample_light(s.position, ul, ls) && dot(ls.direction, ng) > 0.0) {
         vec3 wi = to_local(ls.direction, t, b, ns);
         vec3 f = bsdf_eval_cos(bsdf, wo, wi);
         if (any(greaterThan(f, vec3(0.0)))) {
-          float t_max = isinf(ls.distance) ? 1e30 : ls.distance * (1.0 - SHADOW_RAY_SHORTEN);
+          float t_max = isinf(ls.distance) ? RAY_UNBOUNDED : ls.distance * (1.0 - SHADOW_RAY_SHORTEN);
           g_rays_shadow++;
           if (trace_visible(x, ls.direction, t_max)) {
             float w = mis_power(ls.pdf, bsdf_pdf(bsdf, wo, wi));

@@ -16,8 +16,8 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "include/frame_data.h"
 #include "include/scene_bridge.glsl"
 #include "restir/centre_surface.glsl"
+#include "restir/rng_streams.h"
 
-layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
 layout(set = 0, binding = BINDING_PRIMARY, std430) writeonly buffer Primary { GpuPrimaryHit b_primary[]; };
 
 #include "sampling/warp.h"
@@ -35,7 +35,7 @@ void main() {
   GpuCamera camera = u_frame.camera;
   if (u_frame.primary_mode == PRIMARY_DOMAIN) {
     // The key of the initial pass's first candidate path, so that its camera sample is this one.
-    cs = camera_sample(rng_key(index, 0u, u_frame.frame_index, u_frame.seed));
+    cs = camera_sample(rng_key(index, RNG_STREAM_PATH_FIRST, u_frame.frame_index, u_frame.seed));
     camera = camera_at(false, cs.time);
   }
   vec3 origin;
@@ -56,19 +56,19 @@ void main() {
   p.position_area = vec4(0.0);
   p.geo_normal_material = vec4(0.0);
   p.shading_normal_kind = vec4(0.0);
-  if (trace_closest(origin, dir, 1e30, h)) {
+  if (trace_closest(origin, dir, RAY_UNBOUNDED, h)) {
     p.t = h.t;
     p.instance = h.instance;
     p.geometry = h.geometry;
     p.triangle = h.triangle;
     p.bary = h.bary;
-    p.lod = b_instances[h.instance].lod;
+    p.lod = instance_in(false, h.instance).lod;
     p.flags = PRIMARY_HIT;
     // Its surface in this frame, so that no later stage loads it from the mesh again.
     SurfaceHit s = load_hit(h);
     p.position_area = vec4(s.position, s.area);
     p.geo_normal_material = vec4(s.geo_normal, uintBitsToFloat(s.material));
-    p.shading_normal_kind = vec4(s.shading_normal, uintBitsToFloat(surface_kind(b_materials[s.material])));
+    p.shading_normal_kind = vec4(s.shading_normal, uintBitsToFloat(surface_kind(material_at(s))));
   }
   b_primary[index] = p;
 }

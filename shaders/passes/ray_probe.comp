@@ -32,20 +32,13 @@ void main() {
   out_hit.bary = vec2(0.0);
   out_hit.lod = 0u;
   out_hit.pad = 0u;
-  rayQueryEXT rq;
-  if (k_previous)
-    rayQueryInitializeEXT(rq, u_tlas_prev, gl_RayFlagsOpaqueEXT, 0xFF, r.origin_tmin.xyz, r.origin_tmin.w, r.dir_tmax.xyz, r.dir_tmax.w);
-  else
-    rayQueryInitializeEXT(rq, u_tlas, gl_RayFlagsOpaqueEXT, 0xFF, r.origin_tmin.xyz, r.origin_tmin.w, r.dir_tmax.xyz, r.dir_tmax.w);
-  while (rayQueryProceedEXT(rq)) {
-  }
-  if (rayQueryGetIntersectionTypeEXT(rq, true) == gl_RayQueryCommittedIntersectionTriangleEXT) {
-    out_hit.t = rayQueryGetIntersectionTEXT(rq, true);
-    out_hit.instance = uint(rayQueryGetIntersectionInstanceCustomIndexEXT(rq, true));
-    out_hit.geometry = uint(rayQueryGetIntersectionGeometryIndexEXT(rq, true));
-    out_hit.triangle = uint(rayQueryGetIntersectionPrimitiveIndexEXT(rq, true));
-    out_hit.bary = rayQueryGetIntersectionBarycentricsEXT(rq, true);
-    out_hit.lod = k_previous ? b_instances_prev[out_hit.instance].lod : b_instances[out_hit.instance].lod;
+  if (trace_span(k_previous, r.origin_tmin.xyz, r.origin_tmin.w, r.dir_tmax.xyz, r.dir_tmax.w, false, h)) {
+    out_hit.t = h.t;
+    out_hit.instance = h.instance;
+    out_hit.geometry = h.geometry;
+    out_hit.triangle = h.triangle;
+    out_hit.bary = h.bary;
+    out_hit.lod = instance_in(k_previous, h.instance).lod;
   }
   b_hits[i] = out_hit;
 }

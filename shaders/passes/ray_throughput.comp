@@ -13,7 +13,6 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "sampling/rng.h"
 #include "sampling/warp.h"
 
-layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
 layout(push_constant) uniform Dispatch { GpuDispatchConstants u_dispatch; };
 layout(set = 0, binding = BINDING_COUNTERS, std430) buffer Counters { uint b_counters[]; };
 
@@ -36,7 +35,7 @@ void main() {
     vec3 dir = normalize(cam.forward.xyz + ndc.x * cam.right.xyz + ndc.y * cam.up.xyz);
     RayHit h;
     primary++;
-    if (!trace_closest(vec3(0.0), dir, 1e30, h)) continue;
+    if (!trace_closest(vec3(0.0), dir, RAY_UNBOUNDED, h)) continue;
     hits++;
     SurfaceHit sh = load_hit(h);
     vec3 ng = dot(sh.geo_normal, dir) < 0.0 ? sh.geo_normal : -sh.geo_normal;
@@ -45,7 +44,7 @@ void main() {
     make_onb(ng, t, b);
     vec3 d2 = to_world(sample_cosine_hemisphere(rng_next_float2(rng)), t, b, ng);
     secondary++;
-    if (trace_closest(offset_ray_origin(sh.position, ng), d2, 1e30, h)) hits++;
+    if (trace_closest(offset_ray_origin(sh.position, ng), d2, RAY_UNBOUNDED, h)) hits++;
   }
   atomicAdd(b_counters[SLOT_PRIMARY_RAYS], primary);
   atomicAdd(b_counters[SLOT_SECONDARY_RAYS], secondary);

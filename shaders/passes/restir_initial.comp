@@ -33,7 +33,6 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "sampling/russian_roulette.h"
 #include "restir/restir_pass.glsl"
 #include "restir/path_space.glsl"
-#include "sampling/light_sampling.glsl"
 #include "restir/restir_limits.h"
 #include "restir/centre_surface.glsl"
 #include "restir/layers.glsl"
@@ -57,7 +56,7 @@ uint initial_candidates_of(uint domain) {
   if (boost == 0u || (u_frame.history_flags & HISTORY_VALID) == 0u) return u_restir.initial_candidates;
   if (b_splat_offsets[domain + 1u] != b_splat_offsets[domain]) return u_restir.initial_candidates;
   if (multilayer() && (b_domains[domain].flags & DOMAIN_DISOCCLUDED) == 0u) return u_restir.initial_candidates;
-  atomicAdd(b_counters[COUNTER_DISOCCLUSION_BOOSTED], 1u);
+  counter_add(COUNTER_DISOCCLUSION_BOOSTED, 1u);
   return boost;
 }
 
@@ -119,10 +118,10 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
     if (!found) return;  // no path of this camera ray is in the domain; what it sees is the front layer's
   } else {
     g_rays++;
-    found = trace_closest(origin, dir, 1e30, h);
+    found = trace_closest(origin, dir, RAY_UNBOUNDED, h);
   }
   if (!found) {
-    g_primary_emission += u_frame.environment.rgb / n_init;  // one segment: not resampled
+    g_primary_emission += environment_radiance(dir) / n_init;  // one segment: not resampled
     return;
   }
   Vertex v = domain_primary ? make_vertex(primary_surface_hit(ph), h, ph.lod, dir) : load_vertex(false, h, dir);
@@ -148,13 +147,13 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
       uint base = dim_vertex(i) + DIM_NEE + 3u * j;
       LightSample ls;
       vec3 ul = vec3(rng_dim(key, base), rng_dim(key, base + 1u), rng_dim(key, base + 2u));
-      if (!sample_light(v.position, ul, u_frame, ls)) continue;
+      if (!sample_light(v.position, ul, ls)) continue;
       // Grazing light samples are outside every path structure (path_vertex.glsl): energy at
       // |cos| < SHIFT_MIN_COS, a 1e-6 fraction of a Lambertian emitter's output, is not sampled by NEE.
       if (!isinf(ls.distance) && ls.cos_light < SHIFT_MIN_COS) continue;
       vec3 fs = scatter(v, ls.direction);
       if (!(luminance(fs) > 0.0)) continue;
-      float t_max = isinf(ls.distance) ? 1e30 : ls.distance * (1.0 - SHADOW_RAY_SHORTEN);
+      float t_max = isinf(ls.distance) ? RAY_UNBOUNDED : ls.distance * (1.0 - SHADOW_RAY_SHORTEN);
       g_rays++;
       if (!trace_visible(spawn(v), ls.direction, t_max)) continue;
       float m = technique_weight(true, ls.pdf, scatter_pdf(v, ls.direction));
@@ -186,7 +185,7 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
           c.xk.geometry = ls.geometry;
           c.xk.triangle = ls.triangle;
           c.xk.bary = ls.bary;
-          c.xk.lod = b_instances[ls.instance].lod;
+          c.xk.lod = instance_in(false, ls.instance).lod;
           c.density = pdf_replay / (ls.cos_light / (ls.distance * ls.distance) * ls.area);
         }
       }
@@ -204,10 +203,10 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
     if (dot(d, v.ng) <= 0.0) break;
     vec3 fs = weight * pdf;
     g_rays++;
-    bool hit = trace_closest(spawn(v), d, 1e30, h);
+    bool hit = trace_closest(spawn(v), d, RAY_UNBOUNDED, h);
     Vertex w;
     float edge = 0.0;
-    vec3 le = u_frame.environment.rgb;
+    vec3 le = environment_radiance(d);
     float pl = light_pdf_environment(false);
     if (hit) {
       w = load_vertex(false, h, d);
@@ -287,15 +286,15 @@ vec3 cv_albedo(BsdfParams b) { return b.diffuse + b.f0; }
 vec3 stratified_mean(uvec2 pixel, uint index, uint g, uint first_stream, bool albedo) {
   vec3 sum = vec3(0.0);
   for (uint s = 0u; s < g * g; ++s) {
-    CameraSample cs = camera_sample(rng_key(index, first_stream + s, u_frame.frame_index, u_frame.seed));
+    CameraSample cs = camera_sample(frame_key(index, first_stream + s));
     cs.jitter = (vec2(float(s % g), float(s / g)) + cs.jitter) / float(g);
     vec3 origin;
     vec3 dir;
     primary_ray(camera_at(false, cs.time), vec2(pixel), cs.jitter, cs.lens, origin, dir);
     RayHit h;
     g_rays++;
-    if (!trace_closest(origin, dir, 1e30, h)) {
-      if (!albedo) sum += u_frame.environment.rgb;
+    if (!trace_closest(origin, dir, RAY_UNBOUNDED, h)) {
+      if (!albedo) sum += environment_radiance(dir);
       continue;
     }
     Vertex v = load_vertex(false, h, dir);
@@ -309,18 +308,17 @@ vec3 stratified_mean(uvec2 pixel, uint index, uint g, uint first_stream, bool al
 // edges of bright, directly visible surfaces (a pixel that sees a light over 2% of its area
 // otherwise shows the whole light in 2% of its frames).
 vec3 direct_emission(uvec2 pixel, uint index) {
-  return stratified_mean(pixel, index, u_restir.direct_strata, RESTIR_MAX_INITIAL_CANDIDATES, false);
+  return stratified_mean(pixel, index, u_restir.direct_strata, RNG_STREAM_DIRECT_STRATA, false);
 }
 
 bool sees_emission(GpuPrimaryHit h) {
-  if ((h.flags & PRIMARY_HIT) == 0u) return luminance(u_frame.environment.rgb) > 0.0;
+  if ((h.flags & PRIMARY_HIT) == 0u) return environment_emits();
   return (floatBitsToUint(h.shading_normal_kind.w) & SURFACE_KIND_EMISSIVE) != 0u;
 }
 
 vec3 primary_albedo(GpuPrimaryHit e) {
   if ((e.flags & PRIMARY_HIT) == 0u) return vec3(0.0);
-  GpuMaterial m = b_materials[floatBitsToUint(e.geo_normal_material.w)];
-  return cv_albedo(make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular));
+  return cv_albedo(material_at(primary_surface_hit(e)).bsdf);
 }
 
 // What this pixel's 8 neighbours' visibility-buffer entries say about the edges it may straddle,
@@ -373,7 +371,25 @@ Edges neighbourhood_edges(uvec2 pixel) {
 // The mean albedo over G x G stratified camera samples (G = albedo_strata): its expectation is that
 // of the primary vertex's albedo.
 vec3 stratified_albedo(uvec2 pixel, uint index) {
-  return stratified_mean(pixel, index, u_restir.albedo_strata, RESTIR_MAX_INITIAL_CANDIDATES + 64u, true);
+  return stratified_mean(pixel, index, u_restir.albedo_strata, RNG_STREAM_ALBEDO_STRATA, true);
+}
+
+// The canonical reservoir: the selected candidate with its p-hat and W (RS-main Eq. 5) and
+// confidence 1 (one domain's candidates), and f(Y) in `f`; empty, with confidence 1, where W is not
+// positive. (The resampling passes' finalise_reservoir differs: they keep a selected sample whose W
+// is 0, and their confidence is a sum.)
+Reservoir canonical_reservoir(out vec3 f) {
+  Reservoir r = g_selected;
+  r.ucw = gris_ucw(g_state);  // RS-main Eq. 5
+  r.p_hat = g_state.selected_p_hat;
+  r.confidence = 1.0;
+  f = g_selected_f;
+  if (!(r.ucw > 0.0)) {
+    r = reservoir_empty();
+    r.confidence = 1.0;
+    f = vec3(0.0);
+  }
+  return r;
 }
 
 // The canonical sample of one deep domain of the compacted list (SPEC_DOMAIN_LIST): the same
@@ -389,24 +405,16 @@ void deep_domain_main() {
   g_selected = reservoir_empty();
   g_selected_f = vec3(0.0);
   g_primary_emission = vec3(0.0);
-  g_select_rng = rng_init(domain, 0x51EC7u, u_frame.frame_index, u_frame.seed);
+  g_select_rng = frame_rng(domain, RNG_SALT_INITIAL_SELECT);
   float n_init = float(u_restir.initial_candidates);
   for (uint p = 0u; p < u_restir.initial_candidates; ++p)
-    trace_candidates(pixel, rng_key(domain, p, u_frame.frame_index, u_frame.seed), n_init);
-  Reservoir r = g_selected;
-  r.ucw = gris_ucw(g_state);  // RS-main Eq. 5
-  r.p_hat = g_state.selected_p_hat;
-  r.confidence = 1.0;
-  vec3 f = g_selected_f;
-  if (!(r.ucw > 0.0)) {
-    r = reservoir_empty();
-    r.confidence = 1.0;
-    f = vec3(0.0);
-  }
+    trace_candidates(pixel, frame_key(domain, RNG_STREAM_PATH_FIRST + p), n_init);
+  vec3 f;
+  Reservoir r = canonical_reservoir(f);
   store_output(domain, r, f, g_state.estimate);
-  if (g_state.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], g_state.rejected);
-  atomicAdd(b_counters[COUNTER_RAYS_INITIAL], g_rays);
-  atomicAdd(b_counters[COUNTER_PATHS], u_restir.initial_candidates);
+  if (g_state.rejected > 0u) counter_add(COUNTER_NONFINITE_REJECTED, g_state.rejected);
+  counter_add(COUNTER_RAYS_INITIAL, g_rays);
+  counter_add(COUNTER_PATHS, u_restir.initial_candidates);
 }
 
 void main() {
@@ -422,22 +430,14 @@ void main() {
   g_selected = reservoir_empty();
   g_selected_f = vec3(0.0);
   g_primary_emission = vec3(0.0);
-  g_select_rng = rng_init(index, 0x51EC7u, u_frame.frame_index, u_frame.seed);
+  g_select_rng = frame_rng(index, RNG_SALT_INITIAL_SELECT);
   uint candidates = initial_candidates_of(domain);
   float n_init = float(candidates);
   for (uint p = 0u; p < candidates; ++p)
-    trace_candidates(pixel, rng_key(index, p, u_frame.frame_index, u_frame.seed), n_init);
+    trace_candidates(pixel, frame_key(index, RNG_STREAM_PATH_FIRST + p), n_init);
 
-  Reservoir r = g_selected;
-  r.ucw = gris_ucw(g_state);  // RS-main Eq. 5
-  r.p_hat = g_state.selected_p_hat;
-  r.confidence = 1.0;
-  vec3 f = g_selected_f;
-  if (!(r.ucw > 0.0)) {
-    r = reservoir_empty();
-    r.confidence = 1.0;
-    f = vec3(0.0);
-  }
+  vec3 f;
+  Reservoir r = canonical_reservoir(f);
   Edges edges;
   edges.emission = false;
   edges.albedo = false;
@@ -462,7 +462,7 @@ void main() {
     b_contribution[contribution_cv_delta_index(index, domains, pixels)] = delta;
     b_contribution[contribution_cv_albedo_index(index, domains, pixels)] = vec4(a1, 0.0);
   }
-  if (g_state.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], g_state.rejected);
-  atomicAdd(b_counters[COUNTER_RAYS_INITIAL], g_rays);
-  atomicAdd(b_counters[COUNTER_PATHS], candidates);
+  if (g_state.rejected > 0u) counter_add(COUNTER_NONFINITE_REJECTED, g_state.rejected);
+  counter_add(COUNTER_RAYS_INITIAL, g_rays);
+  counter_add(COUNTER_PATHS, candidates);
 }

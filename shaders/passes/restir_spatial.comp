@@ -48,6 +48,70 @@ float confidence_of(Reservoir r, uint domain) {
   return confidence_capped(r.confidence, confidence_cap_of(b_primary[pixel_index(domain_pixel(domain, u_frame.width))]));
 }
 
+// Step 1, find the neighbours: the domains whose reservoirs this pixel resamples, chosen from the
+// visibility buffer alone (never a reservoir), with their capped confidences.
+struct SpatialNeighbours {
+  uint count;
+  uint filtered;                                    // candidates the surface filter refused
+  uint domain[RESTIR_MAX_SPATIAL_NEIGHBORS];
+  uint pair_slot[RESTIR_MAX_SPATIAL_NEIGHBORS];     // the pair slot of a paired neighbour, else NO_PAIR
+  float confidence[RESTIR_MAX_SPATIAL_NEIGHBORS];   // capped, read once (find_confidences)
+};
+
+// The pairs first: i + o_m and i - o_m where the surfaces are alike both ways.
+void find_pair_neighbours(uvec2 pixel, CentreSurface here, ivec2 o_pair[SPATIAL_MAX_PAIR_OFFSETS], uint slots,
+                          inout SpatialNeighbours n) {
+  for (uint s = 0u; s < pair_slots() && n.count < slots; ++s) {
+    ivec2 p = ivec2(pixel) + pair_direction(o_pair, s);
+    if (!in_image(p)) continue;
+    if (similar_pair(here, centre_surface(b_primary[pixel_index(uvec2(p))]))) {
+      n.domain[n.count] = domain_of(uvec2(p), 0u);
+      n.pair_slot[n.count] = s;
+      n.count++;
+    } else {
+      n.filtered++;
+    }
+  }
+}
+
+// The other neighbours: uniform in the disk, rounded to pixels, inside the image, not this pixel
+// nor one of its pairs, and seeing a surface like this pixel's; each slot draws up to
+// RESTIR_SPATIAL_TRIES candidates. A pixel that sees no surface has no path to reuse into and
+// takes no neighbours.
+void draw_neighbours(uvec2 pixel, CentreSurface here, ivec2 o_pair[SPATIAL_MAX_PAIR_OFFSETS], uint slots,
+                     inout Rng rng, inout SpatialNeighbours n) {
+  for (uint j = n.count; j < slots; ++j) {
+    for (uint t = 0u; t < RESTIR_SPATIAL_TRIES; ++t) {
+      vec2 o = sample_concentric_disk(rng_next_float2(rng)) * u_restir.spatial_radius;
+      ivec2 d = ivec2(round(o));
+      ivec2 p = ivec2(pixel) + d;
+      if (!in_image(p) || p == ivec2(pixel)) continue;
+      bool paired = false;
+      for (uint m = 0u; m < min(k_pair_offsets, SPATIAL_MAX_PAIR_OFFSETS); ++m) paired = paired || d == o_pair[m] || d == -o_pair[m];
+      if (paired) continue;
+      if (!similar_surface(here, centre_surface(b_primary[pixel_index(uvec2(p))]))) {
+        n.filtered++;
+        continue;
+      }
+      n.domain[n.count] = domain_of(uvec2(p), 0u);
+      n.pair_slot[n.count] = NO_PAIR;
+      n.count++;
+      break;
+    }
+  }
+}
+
+// The colour control variate (restir_shade.comp) must not take its colour from a pixel whose
+// reservoir this one reuses: mark the neighbours inside its window.
+void mark_colour_window(uvec2 pixel, SpatialNeighbours n) {
+  uint mask = 0u;
+  for (uint j = 0u; j < n.count; ++j) {
+    ivec2 d = ivec2(domain_pixel(n.domain[j], u_frame.width)) - ivec2(pixel);
+    if (max(abs(d.x), abs(d.y)) <= COLOUR_CV_RADIUS) mask |= 1u << colour_cv_window_bit(d);
+  }
+  uint pixels = u_frame.width * u_frame.height;
+  b_contribution[contribution_canonical_index(pixel_index(pixel), pixels * u_restir.layers, pixels)].w = uintBitsToFloat(mask);
+}
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
@@ -80,75 +144,33 @@ void main() {
   if (no_history && u_restir.disocclusion_spatial_neighbors > 0u) wanted = u_restir.disocclusion_spatial_neighbors;
   uint slots = here.valid ? min(wanted, RESTIR_MAX_SPATIAL_NEIGHBORS) : 0u;
 
-  uint count = 0u;
-  uint filtered = 0u;
-  uint nb[RESTIR_MAX_SPATIAL_NEIGHBORS];
-  uint pair_slot[RESTIR_MAX_SPATIAL_NEIGHBORS];  // the pair slot of a paired neighbour, else NO_PAIR
-  float c_nb[RESTIR_MAX_SPATIAL_NEIGHBORS];      // their capped confidences, read once here
+  // 1. Find the neighbours.
+  SpatialNeighbours nbs;
+  nbs.count = 0u;
+  nbs.filtered = 0u;
   float c_total = c_c;
-  // The pairs first: i + o_m and i - o_m where the surfaces are alike both ways.
   bool pairs = k_pair_offsets > 0u;
   ivec2 o_pair[SPATIAL_MAX_PAIR_OFFSETS];
   spatial_pair_offsets(o_pair);
-  for (uint s = 0u; s < pair_slots() && count < slots; ++s) {
-    ivec2 p = ivec2(pixel) + pair_direction(o_pair, s);
-    if (!in_image(p)) continue;
-    if (similar_pair(here, centre_surface(b_primary[pixel_index(uvec2(p))]))) {
-      nb[count] = domain_of(uvec2(p), 0u);
-      pair_slot[count] = s;
-      count++;
-    } else {
-      filtered++;
-    }
-  }
-  bool list_it = pairs ? count < slots : no_history;
+  find_pair_neighbours(pixel, here, o_pair, slots, nbs);
+  bool list_it = pairs ? nbs.count < slots : no_history;
   if (k_compact && !k_list && list_it && (b_primary[pixel_index(pixel)].flags & PRIMARY_HIT) != 0u) {
     uint item = atomicAdd(b_args.w, 1u);
     b_list[item] = pixel_index(pixel);
     atomicMax(b_args.x, item / (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + 1u);
     return;
   }
-
-  // The other neighbours: uniform in the disk, rounded to pixels, inside the image, not this pixel
-  // nor one of its pairs, and seeing a surface like this pixel's; each slot draws up to
-  // RESTIR_SPATIAL_TRIES candidates. A pixel that sees no surface has no path to reuse into and
-  // takes no neighbours.
-  Rng rng = rng_init(pixel_index(pixel), 0x5A71A1u, u_frame.frame_index, u_frame.seed);
-  for (uint j = count; j < slots; ++j) {
-    for (uint t = 0u; t < RESTIR_SPATIAL_TRIES; ++t) {
-      vec2 o = sample_concentric_disk(rng_next_float2(rng)) * u_restir.spatial_radius;
-      ivec2 d = ivec2(round(o));
-      ivec2 p = ivec2(pixel) + d;
-      if (!in_image(p) || p == ivec2(pixel)) continue;
-      bool paired = false;
-      for (uint m = 0u; m < min(k_pair_offsets, SPATIAL_MAX_PAIR_OFFSETS); ++m) paired = paired || d == o_pair[m] || d == -o_pair[m];
-      if (paired) continue;
-      if (!similar_surface(here, centre_surface(b_primary[pixel_index(uvec2(p))]))) {
-        filtered++;
-        continue;
-      }
-      nb[count] = domain_of(uvec2(p), 0u);
-      pair_slot[count] = NO_PAIR;
-      count++;
-      break;
-    }
-  }
+  Rng rng = frame_rng(pixel_index(pixel), RNG_SALT_SPATIAL);  // the draws, then the selection
+  draw_neighbours(pixel, here, o_pair, slots, rng, nbs);
+  uint count = nbs.count;
   for (uint j = 0u; j < count; ++j) {
-    c_nb[j] = confidence_of(unpack_reservoir(b_in[nb[j]]), nb[j]);
-    c_total += c_nb[j];
+    nbs.confidence[j] = confidence_of(unpack_reservoir(b_in[nbs.domain[j]]), nbs.domain[j]);
+    c_total += nbs.confidence[j];
   }
-  if (filtered > 0u) atomicAdd(b_counters[COUNTER_SPATIAL_FILTERED], filtered);
-  if (u_restir.colour_cv > 0.0) {
-    // The colour control variate (restir_shade.comp) must not take its colour from a pixel whose
-    // reservoir this one reuses: mark the neighbours inside its window.
-    uint mask = 0u;
-    for (uint j = 0u; j < count; ++j) {
-      ivec2 d = ivec2(domain_pixel(nb[j], u_frame.width)) - ivec2(pixel);
-      if (max(abs(d.x), abs(d.y)) <= COLOUR_CV_RADIUS) mask |= 1u << colour_cv_window_bit(d);
-    }
-    uint pixels = u_frame.width * u_frame.height;
-    b_contribution[contribution_canonical_index(pixel_index(pixel), pixels * u_restir.layers, pixels)].w = uintBitsToFloat(mask);
-  }
+  if (nbs.filtered > 0u) counter_add(COUNTER_SPATIAL_FILTERED, nbs.filtered);
+  if (u_restir.colour_cv > 0.0) mark_colour_window(pixel, nbs);
+
+  // 2-4. Shift, MIS weights, stream.
   float k = float(count);
   bool pairwise = u_restir.mis_mode == MIS_PAIRWISE;
 
@@ -175,13 +197,13 @@ void main() {
     uint sub = job % block;
     bool centre_job = sub == block - 1u;
     if (sub == 0u) {
-      rj = unpack_reservoir(b_in[nb[j]]);
-      rj.confidence = c_nb[j];
+      rj = unpack_reservoir(b_in[nbs.domain[j]]);
+      rj.confidence = nbs.confidence[j];
       p_here = 0.0;
       jac = 0.0;
     }
     // What to shift where; jobs whose input is absent are skipped.
-    uint target = nb[j];
+    uint target = nbs.domain[j];
     float c_target = 0.0;  // balance jobs: the confidence of neighbour domain l
     PathSample y = rj.y;
     bool run = reservoir_valid(rj);
@@ -190,8 +212,8 @@ void main() {
       run = centre_valid;
     } else if (sub > 0u) {
       uint l = sub - 1u < j ? sub - 1u : sub;  // the other neighbours, skipping j
-      target = nb[l];
-      c_target = c_nb[l];
+      target = nbs.domain[l];
+      c_target = nbs.confidence[l];
       y = yj_here;
       run = jac > 0.0;
     } else {
@@ -200,17 +222,17 @@ void main() {
     ShiftResult res;
     res.reason = SHIFT_FAIL_ZERO;
     uvec2 tp = domain_pixel(target, u_frame.width);
-    if (run && pairs && pair_slot[j] != NO_PAIR) {
+    if (run && pairs && nbs.pair_slot[j] != NO_PAIR) {
       // A paired neighbour: y_j into this pixel is this pixel's record of j's slot; the centre
       // sample into j is j's record of the opposite slot (restir_spatial_pairs.comp).
-      uint slot = pair_slot[j];
-      uvec2 at = centre_job ? domain_pixel(nb[j], u_frame.width) : pixel;
+      uint slot = nbs.pair_slot[j];
+      uvec2 at = centre_job ? domain_pixel(nbs.domain[j], u_frame.width) : pixel;
       res = load_pair(at, centre_job ? slot ^ 1u : slot, shift_camera(domain_primary(b_primary[pixel_index(at)]), y));
     } else if (run) {
       res = shift_path(false, vec2(tp), domain_primary(b_primary[pixel_index(tp)]), y, false);
       g_rays += res.rays;
-      atomicAdd(b_counters[COUNTER_SPATIAL_SHIFTS], 1u);
-      if (res.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_SPATIAL_FAIL + res.reason], 1u);
+      counter_add(COUNTER_SPATIAL_SHIFTS, 1u);
+      if (res.reason != SHIFT_OK) counter_add(COUNTER_SPATIAL_FAIL + res.reason, 1u);
     }
     bool ok = run && res.reason == SHIFT_OK;
     if (sub == 0u) {
@@ -255,18 +277,9 @@ void main() {
     took_neighbour = false;
   }
 
-  Reservoir out_r = selected;
-  vec3 f = f_selected;
-  if (took_neighbour) atomicAdd(b_counters[COUNTER_SPATIAL_SELECTED], 1u);
-  out_r.p_hat = st.selected_p_hat;
-  out_r.ucw = gris_ucw(st);  // RS-main Eq. 5
-  out_r.confidence = st.confidence;
-  if (st.selected == GRIS_NONE) {
-    out_r = reservoir_empty();
-    out_r.confidence = st.confidence;
-    f = vec3(0.0);
-  }
-  if (st.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], st.rejected);
-  store_output(index, out_r, f, st.estimate);
-  atomicAdd(b_counters[COUNTER_RAYS_SPATIAL], g_rays);
+  if (took_neighbour) counter_add(COUNTER_SPATIAL_SELECTED, 1u);
+
+  // 5. Finalise.
+  finalise_reservoir(index, st, selected, f_selected, st.confidence);
+  counter_add(COUNTER_RAYS_SPATIAL, g_rays);
 }

@@ -37,11 +37,11 @@ void main() {
       if (reservoir_valid(r)) {
         s = shift_path(false, vec2(pixel), dp, r.y, false);
         rays += s.rays;
-        atomicAdd(b_counters[COUNTER_SPATIAL_SHIFTS], 1u);
-        if (s.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_SPATIAL_FAIL + s.reason], 1u);
+        counter_add(COUNTER_SPATIAL_SHIFTS, 1u);
+        if (s.reason != SHIFT_OK) counter_add(COUNTER_SPATIAL_FAIL + s.reason, 1u);
       }
     }
     store_pair(pixel, slot, s);
   }
-  if (rays > 0u) atomicAdd(b_counters[COUNTER_RAYS_SPATIAL], rays);
+  if (rays > 0u) counter_add(COUNTER_RAYS_SPATIAL, rays);
 }

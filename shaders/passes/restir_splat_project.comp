@@ -44,24 +44,24 @@ void splat(uint i, uint time_partition) {
     if (attempt == 1u) {
       hidden = r.reason == SHIFT_FAIL_PRIMARY && hidden_at(r.primary_t, job.distance);
       if (!splat_deeper(job, r)) break;
-      atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + r.reason], 1u);  // the front-layer attempt
-      atomicAdd(b_counters[k_layer_stepping ? COUNTER_SPLAT_STEP_RAYS : COUNTER_SPLAT_RANGE_RAYS], 1u);  // the query after the layer test
+      counter_add(COUNTER_TEMPORAL_FAIL + r.reason, 1u);  // the front-layer attempt
+      counter_add(k_layer_stepping ? COUNTER_SPLAT_STEP_RAYS : COUNTER_SPLAT_RANGE_RAYS, 1u);  // the query after the layer test
     }
     r = run_shift(job, moved);
     jacobian = shift_finish(job, r);
-    atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
-    atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], r.rays);
+    counter_add(COUNTER_TEMPORAL_SHIFTS, 1u);
+    counter_add(COUNTER_RAYS_TEMPORAL, r.rays);
     count_suffix(r, COUNTER_RAYS_REPLAY);
     if (r.reason == SHIFT_OK) break;
   }
   if (r.reason != SHIFT_OK) {
-    atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + r.reason], 1u);
-    if (!job.ok && r.reason == SHIFT_FAIL_PRIMARY) atomicAdd(b_counters[COUNTER_SPLATS_OFFSCREEN], 1u);
-    if (job.ok && job.layer == 0u && r.reason == SHIFT_FAIL_PRIMARY) atomicAdd(b_counters[COUNTER_SPLATS_OCCLUDED], 1u);
-    if (multilayer() && hidden && job.layer == 0u) atomicAdd(b_counters[COUNTER_SPLATS_NO_LAYER], 1u);
+    counter_add(COUNTER_TEMPORAL_FAIL + r.reason, 1u);
+    if (!job.ok && r.reason == SHIFT_FAIL_PRIMARY) counter_add(COUNTER_SPLATS_OFFSCREEN, 1u);
+    if (job.ok && job.layer == 0u && r.reason == SHIFT_FAIL_PRIMARY) counter_add(COUNTER_SPLATS_OCCLUDED, 1u);
+    if (multilayer() && hidden && job.layer == 0u) counter_add(COUNTER_SPLATS_NO_LAYER, 1u);
     return;
   }
-  if (job.layer != 0u) atomicAdd(b_counters[COUNTER_SPLATS_DEEP], 1u);
+  if (job.layer != 0u) counter_add(COUNTER_SPLATS_DEEP, 1u);
   Reservoir y = x;  // W, confidence and p-hat_prev of X_i; the sample becomes Y_i
   y.y = shifted_sample(x.y, r);
   y.y.jitter = job.y.jitter;

@@ -98,7 +98,7 @@ Backprojection backproject_centre(GpuPrimaryHit centre, float cap) {
 struct BackupDomain {
   bool ok;
   uint layer;
-  float t_min;  // its depth range (0, 1e30 for the front layer)
+  float t_min;  // its depth range (0, RAY_UNBOUNDED for the front layer)
   float t_max;
 };
 
@@ -107,7 +107,7 @@ BackupDomain backup_domain_of(uint index, uint layer, Backprojection bp) {
   b.ok = false;
   b.layer = 0u;
   b.t_min = 0.0;
-  b.t_max = 1e30;
+  b.t_max = RAY_UNBOUNDED;
   if (!bp.ok) return b;
   if ((u_restir.flags & RESTIR_SPLAT_BACKUP) != 0u) {
     b.ok = true;
@@ -135,9 +135,9 @@ uint next_splat(uint first, uint last, uint after, bool first_pick) {
 }
 
 void count_shift(ShiftResult r) {
-  atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
-  atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], r.rays);
-  if (r.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + r.reason], 1u);
+  counter_add(COUNTER_TEMPORAL_SHIFTS, 1u);
+  counter_add(COUNTER_RAYS_TEMPORAL, r.rays);
+  if (r.reason != SHIFT_OK) counter_add(COUNTER_TEMPORAL_FAIL + r.reason, 1u);
   count_suffix(r, COUNTER_RAYS_REPLAY_RESAMPLE);
 }
 
@@ -154,6 +154,41 @@ bool invocation_domain(out uint domain) {
   return pixel.x < u_frame.width && pixel.y < u_frame.height;
 }
 
+// The shift jobs of a domain, in the order they run: every shift is a job of one loop with one
+// shift_path call (lavapipe inlines a traversal per call site).
+const uint JOB_REVERSE = 0u;                // Y*, the canonical sample, reverse-splatted into the previous front layer (Eq. 13/21)
+const uint JOB_REVERSE_DEEPER = 1u;         // the same into the deeper previous domain whose range holds it, when JOB_REVERSE found it hidden (restir-multilayer)
+const uint JOB_CANONICAL_TO_BACKUP = 2u;    // Y* into the backup domain (RS-supp Eq. 21)
+const uint JOB_BACKUP = 3u;                 // the backup sample into this pixel: Y^b
+const uint JOB_BACKUP_REVERSE = 4u;         // Y^b reverse-splatted (RS-supp Eq. 22)
+const uint JOB_BACKUP_REVERSE_DEEPER = 5u;  // the same deeper, when JOB_BACKUP_REVERSE found it hidden
+const uint JOB_SPLATS = 6u;                 // then per splat s: Y_s into the backup domain (RS-supp Eq. 20), and its resampling
+
+// A reverse splat of the canonical sample or of Y^b (RS-main Eq. 13): where it landed in the
+// previous frame, for the MIS weights.
+struct ReverseSplat {
+  ShiftJob job;        // the front-layer attempt, which the deeper job retries
+  ShiftResult result;  // its result
+  float from;          // p-hat_prev(T^-1 Y) |dT^-1/dY|
+  float confidence;    // (1 - alpha) times the confidence of the previous domain it landed in
+};
+
+ReverseSplat reverse_splat_none() {
+  ReverseSplat r;
+  r.job.ok = false;
+  r.result = shift_none(SHIFT_FAIL_ZERO);
+  r.from = 0.0;
+  r.confidence = 0.0;
+  return r;
+}
+
+// The backup sample's shifts (RS-main 4.2).
+struct BackupShifts {
+  ShiftResult y;    // Y^b: the backup sample shifted into this pixel
+  float jacobian;   // its |T_b'| (0: failed)
+  float from_star;  // p-hat_prev(T_b^-1 Y*) |dT_b^-1/dY*|
+};
+
 void main() {
   uint index;
   if (!invocation_domain(index)) return;
@@ -168,6 +203,8 @@ void main() {
   // representative hit lies on did not move, else confidence_cap (docs/ARCHITECTURE.md, "Confidence cap").
   GpuPrimaryHit centre = b_primary[index];  // the visibility buffer is indexed by domain (layer 0: by pixel)
   float cap = confidence_cap_of(centre);
+  // 1. Find the history: the splats that landed here (the counting sort's list), the backprojected
+  // representative hit (Eq. 17's confidence) and the backup domain.
   Backprojection bp = backproject_centre(centre, cap);
   BackupDomain bd = backup_domain_of(index, layer, bp);
   bool backup_domain = bd.ok;
@@ -178,40 +215,29 @@ void main() {
   Reservoir xb = backup_domain ? unpack_reservoir(b_in[prev_domain_of(bp.backup, bd.layer)]) : reservoir_empty();
   float c_b = backup_domain ? alpha * confidence_capped(xb.confidence, cap) : 0.0;
 
-  Rng rng = rng_init(index, 0x5B1A7u, u_frame.frame_index, u_frame.seed);  // per domain (layer 0: the pixel)
+  // 2-4. Shift, MIS weights, stream.
+  Rng rng = frame_rng(index, RNG_SALT_SPLAT_SELECT);  // per domain (layer 0: the pixel)
   GrisState st = gris_begin();
   Reservoir out_r = canonical;
   vec3 f = f_canonical;
   uint first = b_offsets[index];
   uint last = b_offsets[index + 1u];
 
-  // Every shift is a job of one loop with one shift_path call (lavapipe inlines a traversal per
-  // call site). Jobs: 0 the canonical sample reverse-splatted (Eq. 13/21) into the previous front
-  // layer, 1 the same into the deeper previous domain whose range holds it when 0 found it hidden
-  // (restir-multilayer), 2 the canonical sample into the backup domain (Eq. 21), 3 the backup sample
-  // into this pixel (Y^b), 4 Y^b reverse-splatted (Eq. 22), 5 the same deeper when 4 found it
-  // hidden; then per splat s, Y_s into the backup domain (Eq. 20) and its resampling.
-  const uint first_splat_job = 6u;
-  float from_r = 0.0;       // p-hat_prev(T^-1 Y*) |dT^-1/dY*|
-  float c_r = 0.0;
-  ShiftJob reverse;         // job 0's, which job 1 retries deeper
-  ShiftResult reverse_result = shift_none(SHIFT_FAIL_ZERO);
-  ShiftJob reverse_b;       // job 4's, which job 5 retries deeper
-  ShiftResult reverse_b_result = shift_none(SHIFT_FAIL_ZERO);
-  float from_b_star = 0.0;  // p-hat_prev(T_b^-1 Y*) |dT_b^-1/dY*|
-  ShiftResult yb = shift_none(SHIFT_FAIL_ZERO);
-  float j_b = 0.0;
-  float from_r_b = 0.0;     // p-hat_prev(T^-1 Y^b) |dT^-1/dY^b|
-  float c_r_b = 0.0;
+  ReverseSplat rev_star = reverse_splat_none();  // Y*'s
+  ReverseSplat rev_b = reverse_splat_none();     // Y^b's
+  BackupShifts bk;
+  bk.y = shift_none(SHIFT_FAIL_ZERO);
+  bk.jacobian = 0.0;
+  bk.from_star = 0.0;
   bool from_deep = false;   // a splat from a previous deep domain landed here
-  uint jobs = first_splat_job + (last - first);
+  uint jobs = JOB_SPLATS + (last - first);
   uint record = SPLAT_NONE;
   for (uint job = 0u; job < jobs; ++job) {
-    uint s = job >= first_splat_job ? first + job - first_splat_job : 0u;
+    uint s = job >= JOB_SPLATS ? first + job - JOB_SPLATS : 0u;
     SplatRecord rec;
     Reservoir y_s;
-    if (job >= first_splat_job) {
-      record = next_splat(first, last, record, job == first_splat_job);
+    if (job >= JOB_SPLATS) {
+      record = next_splat(first, last, record, job == JOB_SPLATS);
       rec = b_splats[record];
       y_s = unpack_reservoir(rec.reservoir);
       from_deep = from_deep || record % prev_domain_count() >= u_frame.prev_width * u_frame.prev_height;
@@ -219,28 +245,29 @@ void main() {
     ShiftJob sj;
     sj.ok = false;
     bool run = false;
-    // Jobs 0 and 4 reverse-splat: one splat_prepare call site for both (each site inlines tau's
+    // The two reverse splats: one splat_prepare call site for both (each site inlines tau's
     // UV-space queries, which lavapipe compiles for minutes).
-    if (job == 0u || job == 4u) {
-      run = job == 0u ? reservoir_valid(canonical) : j_b > 0.0;
-      PathSample y_splat = job == 0u ? canonical.y : shifted_sample(xb.y, yb);  // job 4: Y^b, the backup sample as shifted into this pixel
+    if (job == JOB_REVERSE || job == JOB_BACKUP_REVERSE) {
+      run = job == JOB_REVERSE ? reservoir_valid(canonical) : bk.jacobian > 0.0;
+      PathSample y_splat = job == JOB_REVERSE ? canonical.y : shifted_sample(xb.y, bk.y);  // Y^b, the backup sample as shifted into this pixel
       if (run) sj = splat_prepare(true, y_splat, 0u);
-      if (job == 0u) reverse = sj;
-      else reverse_b = sj;
-    } else if (job == 1u || job == 5u) {
-      ShiftJob deeper = job == 1u ? reverse : reverse_b;  // one splat_deeper call site
-      run = deeper.ok && splat_deeper(deeper, job == 1u ? reverse_result : reverse_b_result);
+      if (job == JOB_REVERSE) rev_star.job = sj;
+      else rev_b.job = sj;
+    } else if (job == JOB_REVERSE_DEEPER || job == JOB_BACKUP_REVERSE_DEEPER) {
+      ShiftJob deeper = job == JOB_REVERSE_DEEPER ? rev_star.job : rev_b.job;  // one splat_deeper call site
+      run = deeper.ok && splat_deeper(deeper, job == JOB_REVERSE_DEEPER ? rev_star.result : rev_b.result);
       if (run) {
         sj = deeper;
-        atomicAdd(b_counters[k_layer_stepping ? COUNTER_SPLAT_STEP_RAYS : COUNTER_SPLAT_RANGE_RAYS], 1u);  // the query after the layer test
+        counter_add(k_layer_stepping ? COUNTER_SPLAT_STEP_RAYS : COUNTER_SPLAT_RANGE_RAYS, 1u);  // the query after the layer test
       }
-    } else if (job == 3u) {
+    } else if (job == JOB_BACKUP) {
       run = backup_domain && reservoir_valid(xb);
       if (run) sj = gather_prepare(false, vec2(pixel), xb.y);
     } else {
-      // Job 2 and the splats: into the backup domain (for the deep backup restricted to its range).
-      run = backup_domain && (job != 2u || reservoir_valid(canonical));
-      if (run) sj = gather_prepare_deep(true, vec2(bp.backup), job == 2u ? canonical.y : y_s.y, bd.layer, bd.t_min, bd.t_max);
+      // Y* and the splats into the backup domain (for the deep backup restricted to its range).
+      run = backup_domain && (job != JOB_CANONICAL_TO_BACKUP || reservoir_valid(canonical));
+      if (run)
+        sj = gather_prepare_deep(true, vec2(bp.backup), job == JOB_CANONICAL_TO_BACKUP ? canonical.y : y_s.y, bd.layer, bd.t_min, bd.t_max);
     }
     ShiftResult r;
     r.reason = SHIFT_FAIL_ZERO;
@@ -253,33 +280,34 @@ void main() {
       count_shift(r);
     }
     float from = jac > 0.0 ? p_hat_from(luminance(r.f), jac) : 0.0;
-    if (job <= 1u) {
-      if (job == 0u) reverse_result = r;
+    if (job <= JOB_REVERSE_DEEPER) {
+      if (job == JOB_REVERSE) rev_star.result = r;
       if (jac > 0.0) {
-        from_r = from;
-        c_r = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel), sj.layer, cap);
+        rev_star.from = from;
+        rev_star.confidence = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel), sj.layer, cap);
       }
-    } else if (job == 2u) {
-      from_b_star = from;
-    } else if (job == 3u) {
-      yb = r;
-      j_b = jac;
-    } else if (job == 4u || job == 5u) {
-      if (job == 4u) reverse_b_result = r;
+    } else if (job == JOB_CANONICAL_TO_BACKUP) {
+      bk.from_star = from;
+    } else if (job == JOB_BACKUP) {
+      bk.y = r;
+      bk.jacobian = jac;
+    } else if (job == JOB_BACKUP_REVERSE || job == JOB_BACKUP_REVERSE_DEEPER) {
+      if (job == JOB_BACKUP_REVERSE) rev_b.result = r;
       if (jac > 0.0) {
-        from_r_b = from;
-        c_r_b = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel), sj.layer, cap);
+        rev_b.from = from;
+        rev_b.confidence = (1.0 - alpha) * prev_confidence(ivec2(sj.pixel), sj.layer, cap);
       }
-      if (job == 4u) continue;
+      if (job == JOB_BACKUP_REVERSE) continue;
+      // Every term of the canonical sample's and the backup's weights is known: stream both.
       // The canonical sample (RS-main Eq. 12-13; RS-supp Eq. 21) and the backup (RS-supp Eq. 22).
-      float m_star = mis_balance_terms(c_star * canonical.p_hat, c_b * from_b_star, c_r * from_r);
+      float m_star = mis_balance_terms(c_star * canonical.p_hat, c_b * bk.from_star, rev_star.confidence * rev_star.from);
       gris_stream_path(st, m_star * canonical.p_hat * canonical.ucw, canonical.p_hat, f_canonical, c_star, 0u, rng_next_float(rng));
-      float p_yb = j_b > 0.0 ? luminance(yb.f) : 0.0;
-      float m_b = j_b > 0.0 ? mis_balance_terms(c_b * xb.p_hat / j_b, c_star * p_yb, c_r_b * from_r_b) : 0.0;
-      if (gris_stream_path(st, m_b * p_yb * xb.ucw * j_b, p_yb, yb.f, 0.0, 1u, rng_next_float(rng))) {
+      float p_yb = bk.jacobian > 0.0 ? luminance(bk.y.f) : 0.0;
+      float m_b = bk.jacobian > 0.0 ? mis_balance_terms(c_b * xb.p_hat / bk.jacobian, c_star * p_yb, rev_b.confidence * rev_b.from) : 0.0;
+      if (gris_stream_path(st, m_b * p_yb * xb.ucw * bk.jacobian, p_yb, bk.y.f, 0.0, 1u, rng_next_float(rng))) {
         out_r = xb;
-        out_r.y = shifted_sample(xb.y, yb);
-        f = yb.f;
+        out_r.y = shifted_sample(xb.y, bk.y);
+        f = bk.y.f;
       }
     } else {
       // Splat Y_s (RS-main Eq. 10-11; RS-supp Eq. 20).
@@ -296,29 +324,19 @@ void main() {
   }
   // ML Table 1's coverage: a disoccluded front-layer pixel (domain_build.comp) that a splat from a
   // previous deep domain reached, or the deep backup's sample.
-  bool deep_backup_in = backup_domain && bd.layer != 0u && j_b > 0.0;
+  bool deep_backup_in = backup_domain && bd.layer != 0u && bk.jacobian > 0.0;
   if (multilayer() && layer == 0u && (from_deep || deep_backup_in) && (b_domains[index].flags & DOMAIN_DISOCCLUDED) != 0u) {
-    atomicAdd(b_counters[COUNTER_DISOCCLUDED_COVERED], 1u);
-    if (from_deep) atomicAdd(b_counters[COUNTER_DISOCCLUDED_SPLATTED], 1u);
-    if (deep_backup_in) atomicAdd(b_counters[COUNTER_DISOCCLUDED_BACKUP], 1u);
+    counter_add(COUNTER_DISOCCLUDED_COVERED, 1u);
+    if (from_deep) counter_add(COUNTER_DISOCCLUDED_SPLATTED, 1u);
+    if (deep_backup_in) counter_add(COUNTER_DISOCCLUDED_BACKUP, 1u);
     atomicOr(b_domains[index].flags, DOMAIN_COVERED);  // the domain map's "covered" (render/restir/domain_map.cpp)
   }
-  if (st.selected != 0u && st.selected != GRIS_NONE) atomicAdd(b_counters[COUNTER_TEMPORAL_SELECTED], 1u);
-  if (st.selected == 1u) atomicAdd(b_counters[COUNTER_SPLAT_BACKUP_SELECTED], 1u);
-  if (last == first && layer == 0u) atomicAdd(b_counters[COUNTER_TEMPORAL_NO_HISTORY], 1u);  // a hole: no splat landed here
-  atomicAdd(b_counters[COUNTER_SPLATS_LANDED], last - first);
-  atomicMax(b_counters[COUNTER_SPLATS_MAX], last - first);
-  out_r.p_hat = st.selected_p_hat;
-  out_r.ucw = gris_ucw(st);  // RS-main Eq. 5
-  // RS-main Eq. 17 (with the backup, its confidence is added too).
+  if (st.selected != 0u && st.selected != GRIS_NONE) counter_add(COUNTER_TEMPORAL_SELECTED, 1u);
+  if (st.selected == 1u) counter_add(COUNTER_SPLAT_BACKUP_SELECTED, 1u);
+  if (last == first && layer == 0u) counter_add(COUNTER_TEMPORAL_NO_HISTORY, 1u);  // a hole: no splat landed here
+  counter_add(COUNTER_SPLATS_LANDED, last - first);
+  counter_max(COUNTER_SPLATS_MAX, last - first);
+  // 5. Finalise, with the confidence of RS-main Eq. 17 (with the backup, its confidence is added too).
   float c_backup = backup_domain ? confidence_capped(xb.confidence, cap) : 0.0;
-  out_r.confidence = min(c_star + bp.confidence + c_backup, cap);
-  if (st.selected == GRIS_NONE) {
-    float c = out_r.confidence;
-    out_r = reservoir_empty();
-    out_r.confidence = c;
-    f = vec3(0.0);
-  }
-  if (st.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], st.rejected);
-  store_output(index, out_r, f, st.estimate);
+  finalise_reservoir(index, st, out_r, f, min(c_star + bp.confidence + c_backup, cap));
 }

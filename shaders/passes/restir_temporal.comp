@@ -28,8 +28,8 @@ uint g_rays = 0u;
 
 void count_shift(ShiftResult s) {
   g_rays += s.rays;
-  atomicAdd(b_counters[COUNTER_TEMPORAL_SHIFTS], 1u);
-  if (s.reason != SHIFT_OK) atomicAdd(b_counters[COUNTER_TEMPORAL_FAIL + s.reason], 1u);
+  counter_add(COUNTER_TEMPORAL_SHIFTS, 1u);
+  if (s.reason != SHIFT_OK) counter_add(COUNTER_TEMPORAL_FAIL + s.reason, 1u);
   count_suffix(s, COUNTER_RAYS_REPLAY);
 }
 
@@ -114,43 +114,38 @@ bool heuristic_valid(Backprojection b, float p_hat_current, float p_hat_previous
          ratio <= 10.0;
 }
 
-void main() {
-  uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
-  uint index = domain_of(pixel, 0u);
-  Reservoir canonical = unpack_reservoir(b_out[index]);
-  vec3 f_canonical = b_contribution[index].rgb;
-
-  bool unbiased = (u_restir.flags & RESTIR_UNBIASED) != 0u;
-  Backprojection bp;
-  Reservoir history = reservoir_empty();
+// Step 1, find the history: the previous pixel q whose reservoir is this pixel's history
+// (backprojection, then the history filter's search), chosen from geometry alone; false when there
+// is none. Whether domain q takes part depends on geometry only. An empty reservoir in q still
+// claims its MIS share of the canonical sample (its confidence counts), it just brings no
+// candidate. With the history filter, q takes part only when its centre surface is like this
+// pixel's (find_history): a pixel that was disoccluded has no history, instead of the occluder's.
+bool find_temporal_neighbor(uvec2 pixel, bool unbiased, out Backprojection bp) {
   bool have_history = backproject(pixel, bp);
-  // Whether domain q takes part depends on geometry only. An empty reservoir in q still claims its
-  // MIS share of the canonical sample (its confidence counts), it just brings no candidate.
-  // With the history filter, q takes part only when its centre surface is like this pixel's
-  // (find_history): a pixel that was disoccluded has no history, instead of the occluder's.
   if (have_history && (u_restir.flags & RESTIR_TEMPORAL_FILTER) != 0u) have_history = find_history(bp);
   if (have_history && !unbiased) load_previous_centre(bp);  // the biased validation's, of the final q
-  uvec2 q = bp.q;
-  if (have_history) history = unpack_reservoir(b_in[prev_domain_of(q, 0u)]);
-  if (!have_history || !(history.confidence > 0.0)) {
-    atomicAdd(b_counters[COUNTER_TEMPORAL_NO_HISTORY], 1u);
-    atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], g_rays);
-    return;  // the canonical reservoir and its estimate stay in place
-  }
-  bool moved = (u_frame.history_flags & HISTORY_SCENE_MOVED) != 0u;
-  float c_c = canonical.confidence;
-  float c_h = confidence_capped(history.confidence, confidence_cap_of(b_primary[pixel_index(pixel)]));  // RS-main 3.4
+  return have_history;
+}
 
+// Step 2, shift: the history sample into this pixel (frame t), and for the unbiased MIS the
+// canonical sample back into q (frame t-1).
+struct TemporalShifts {
+  ShiftResult forward;  // T(y_h): the history sample in this pixel
+  float from_q;         // p-hat from q of the canonical sample (RS-main Eq. 7): p-hat_q(T^-1(y_c)) |dT^-1/dy_c|
+};
+
+TemporalShifts shift_temporal(uvec2 pixel, uvec2 q, Reservoir canonical, Reservoir history, bool unbiased) {
+  bool moved = (u_frame.history_flags & HISTORY_SCENE_MOVED) != 0u;
+  TemporalShifts t;
+  t.forward = shift_none(SHIFT_FAIL_ZERO);
+  t.from_q = 0.0;
   // Both shifts run through one call site (lavapipe compiles each inlined call separately):
   // job 0, the history sample into this pixel (frame t); job 1, the canonical sample back into q
   // (frame t-1), needed only for the unbiased MIS.
-  ShiftResult fw = shift_none(SHIFT_FAIL_ZERO);
-  float from_q = 0.0;
   for (uint job = 0u; job < (unbiased ? 2u : 1u); ++job) {
     bool back = job == 1u;
     if (!back && !reservoir_valid(history)) {
-      fw = shift_fail(fw, SHIFT_FAIL_ZERO);
+      t.forward = shift_fail(t.forward, SHIFT_FAIL_ZERO);
       continue;
     }
     if (back && !reservoir_valid(canonical)) break;
@@ -161,56 +156,100 @@ void main() {
     DomainPrimary dp = domain_primary(target);
     ShiftResult s = shift_path(back, back ? vec2(q) : vec2(pixel), dp, back ? canonical.y : history.y, moved);
     count_shift(s);
-    if (!back) fw = s;
-    // p-hat from q of the canonical sample (RS-main Eq. 7): p-hat_q(T(y_c)) |dT/dy_c|.
-    else if (s.reason == SHIFT_OK) from_q = p_hat_from(luminance(s.f), s.jacobian);
+    if (!back) t.forward = s;
+    else if (s.reason == SHIFT_OK) t.from_q = p_hat_from(luminance(s.f), s.jacobian);
   }
+  return t;
+}
+
+// Step 3, the MIS weights: the resampling weights of the canonical sample (w_c) and of the history
+// sample in this pixel (w_h), and the history's confidence as it is streamed.
+struct TemporalWeights {
+  float w_c;
+  float w_h;
+  float c_h;
+};
+
+// Unbiased: the generalized balance heuristic over the two domains (RS-main Eq. 6/7), with
+// w = m p-hat W |J| (RS-main Eq. 4). p_fw and jacobian are those of the history sample shifted here.
+TemporalWeights temporal_weights_unbiased(Reservoir canonical, Reservoir history, float c_c, float c_h, float p_fw,
+                                          float jacobian, float from_q) {
+  TemporalWeights w;
+  w.c_h = c_h;
+  // p-hat from q of y': p-hat_q(y) |dy/dy'| = p-hat_q(y) / |dy'/dy|.
+  float m_h = jacobian > 0.0 ? mis_balance2(c_h, history.p_hat / jacobian, c_c, p_fw) : 0.0;
+  w.w_h = m_h * p_fw * history.ucw * jacobian;
+  float m_c = mis_balance2(c_c, canonical.p_hat, c_h, from_q);
+  w.w_c = m_c * canonical.p_hat * canonical.ucw;
+  return w;
+}
+
+// Biased: the tutorial's merge: every domain counts with its confidence (its M) and no MIS. The
+// history is merged only when q's surface passes the heuristic validation; a history without a
+// sample (its candidates were all zero, e.g. in shadow) then counts its confidence with weight 0,
+// as the tutorial's M_prev does.
+TemporalWeights temporal_weights_biased(Backprojection bp, Reservoir canonical, Reservoir history, float c_c, float c_h,
+                                        float p_fw, float jacobian) {
+  TemporalWeights w;
+  w.c_h = c_h;
+  bool has_sample = reservoir_valid(history);
+  bool valid = has_sample ? (p_fw > 0.0 && heuristic_valid(bp, p_fw, history.p_hat)) : heuristic_valid(bp, 1.0, 1.0);
+  if (!valid) counter_add(COUNTER_TEMPORAL_INVALID, 1u);
+  if (!valid) w.c_h = 0.0;  // refused: neither its sample nor its confidence is merged
+  float total = c_c + w.c_h;
+  w.w_h = valid && has_sample ? (w.c_h / total) * p_fw * history.ucw * jacobian : 0.0;
+  w.w_c = (c_c / total) * canonical.p_hat * canonical.ucw;
+  return w;
+}
+
+void main() {
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
+  uint index = domain_of(pixel, 0u);
+  Reservoir canonical = unpack_reservoir(b_out[index]);
+  vec3 f_canonical = b_contribution[index].rgb;
+  bool unbiased = (u_restir.flags & RESTIR_UNBIASED) != 0u;
+
+  // 1. Find the history.
+  Backprojection bp;
+  Reservoir history = reservoir_empty();
+  bool have_history = find_temporal_neighbor(pixel, unbiased, bp);
+  uvec2 q = bp.q;
+  if (have_history) history = unpack_reservoir(b_in[prev_domain_of(q, 0u)]);
+  if (!have_history || !(history.confidence > 0.0)) {
+    counter_add(COUNTER_TEMPORAL_NO_HISTORY, 1u);
+    counter_add(COUNTER_RAYS_TEMPORAL, g_rays);
+    return;  // the canonical reservoir and its estimate stay in place
+  }
+  float c_c = canonical.confidence;
+  float c_h = confidence_capped(history.confidence, confidence_cap_of(b_primary[pixel_index(pixel)]));  // RS-main 3.4
+
+  // 2. Shift.
+  TemporalShifts sh = shift_temporal(pixel, q, canonical, history, unbiased);
+  ShiftResult fw = sh.forward;
   // The history sample in this pixel: w_h = m_h p-hat(y') W_h |dy'/dy| (RS-main Eq. 4).
   float p_fw = fw.reason == SHIFT_OK ? luminance(fw.f) : 0.0;
   float jacobian = fw.reason == SHIFT_OK ? fw.jacobian : 0.0;
 
-  float w_h;
-  float w_c;
-  if (unbiased) {
-    // p-hat from q of y': p-hat_q(y) |dy/dy'| = p-hat_q(y) / |dy'/dy|.
-    float m_h = jacobian > 0.0 ? mis_balance2(c_h, history.p_hat / jacobian, c_c, p_fw) : 0.0;
-    w_h = m_h * p_fw * history.ucw * jacobian;
-    float m_c = mis_balance2(c_c, canonical.p_hat, c_h, from_q);
-    w_c = m_c * canonical.p_hat * canonical.ucw;
-  } else {
-    // The tutorial's merge: every domain counts with its confidence (its M) and no MIS. The history
-    // is merged only when q's surface passes the heuristic validation; a history without a sample
-    // (its candidates were all zero, e.g. in shadow) then counts its confidence with weight 0, as
-    // the tutorial's M_prev does.
-    bool has_sample = reservoir_valid(history);
-    bool valid = has_sample ? (p_fw > 0.0 && heuristic_valid(bp, p_fw, history.p_hat)) : heuristic_valid(bp, 1.0, 1.0);
-    if (!valid) atomicAdd(b_counters[COUNTER_TEMPORAL_INVALID], 1u);
-    if (!valid) c_h = 0.0;  // refused: neither its sample nor its confidence is merged
-    float total = c_c + c_h;
-    w_h = valid && has_sample ? (c_h / total) * p_fw * history.ucw * jacobian : 0.0;
-    w_c = (c_c / total) * canonical.p_hat * canonical.ucw;
-  }
-  Rng rng = rng_init(pixel_index(pixel), 0x7E3A0u, u_frame.frame_index, u_frame.seed);
+  // 3. MIS weights.
+  TemporalWeights w = unbiased ? temporal_weights_unbiased(canonical, history, c_c, c_h, p_fw, jacobian, sh.from_q)
+                               : temporal_weights_biased(bp, canonical, history, c_c, c_h, p_fw, jacobian);
+
+  // 4. Stream the canonical sample, then the history.
+  Rng rng = frame_rng(pixel_index(pixel), RNG_SALT_TEMPORAL_SELECT);
   GrisState s = gris_begin();
-  gris_stream_path(s, w_c, canonical.p_hat, f_canonical, c_c, 0u, rng_next_float(rng));
-  gris_stream_path(s, w_h, p_fw, fw.f, c_h, 1u, rng_next_float(rng));
-  Reservoir out_r = canonical;
+  gris_stream_path(s, w.w_c, canonical.p_hat, f_canonical, c_c, 0u, rng_next_float(rng));
+  gris_stream_path(s, w.w_h, p_fw, fw.f, w.c_h, 1u, rng_next_float(rng));
+  Reservoir selected = canonical;
   vec3 f = f_canonical;
   if (s.selected == 1u) {
-    out_r = history;
-    out_r.y = shifted_sample(history.y, fw);
+    selected = history;
+    selected.y = shifted_sample(history.y, fw);
     f = fw.f;
-    atomicAdd(b_counters[COUNTER_TEMPORAL_SELECTED], 1u);
+    counter_add(COUNTER_TEMPORAL_SELECTED, 1u);
   }
-  out_r.p_hat = s.selected_p_hat;
-  out_r.ucw = gris_ucw(s);  // RS-main Eq. 5
-  out_r.confidence = s.confidence;
-  if (s.selected == GRIS_NONE) {
-    out_r = reservoir_empty();
-    out_r.confidence = s.confidence;
-    f = vec3(0.0);
-  }
-  if (s.rejected > 0u) atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], s.rejected);
-  store_output(index, out_r, f, s.estimate);
-  atomicAdd(b_counters[COUNTER_RAYS_TEMPORAL], g_rays);
+
+  // 5. Finalise.
+  finalise_reservoir(index, s, selected, f, s.confidence);
+  counter_add(COUNTER_RAYS_TEMPORAL, g_rays);
 }

@@ -21,9 +21,9 @@ CONST_DEF uint SURFACE_KIND_METAL = 2u;
 CONST_DEF uint SURFACE_KIND_ROUGH = 4u;  // rough enough to reconnect (restir/reconnection.h)
 
 // The SURFACE_KIND_* bits of a material (the primary stage stores them with each hit).
-uint surface_kind(GpuMaterial m) {
-  BsdfParams b = make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular);
-  return (material_emits(m) ? SURFACE_KIND_EMISSIVE : 0u) | (m.base_color_metallic.a >= 0.5 ? SURFACE_KIND_METAL : 0u) |
+uint surface_kind(SurfaceMaterial m) {
+  BsdfParams b = m.bsdf;
+  return (material_emits(m) ? SURFACE_KIND_EMISSIVE : 0u) | (m.metallic >= 0.5 ? SURFACE_KIND_METAL : 0u) |
          (rough_vertex(b.alpha, max(b.f0.r, max(b.f0.g, b.f0.b))) ? SURFACE_KIND_ROUGH : 0u);
 }
 
@@ -42,7 +42,7 @@ CentreSurface surface_of(ResolvedSurface r, float depth) {
   if (r.reason != RESOLVE_OK) return c;
   c.valid = true;
   c.normal = r.hit.shading_normal;
-  c.kind = surface_kind(b_materials[r.hit.material]);
+  c.kind = surface_kind(material_at(r.hit));
   return c;
 }
 

@@ -19,7 +19,7 @@ bool prev_list_entry(out uint domain) {
   uint count = b_domain_args_prev[k_dormant_list ? DOMAIN_ARGS_DORMANT : DOMAIN_ARGS_ACTIVE].count;
   domain = 0u;
   if (i >= count) return false;
-  domain = b_domain_list_prev[k_dormant_list ? dormant_list_slot(i, u_restir.layers, u_frame.prev_width, u_frame.prev_height) : i];
+  domain = b_domain_list_prev[k_dormant_list ? dormant_list_slot(i, restir_layers(), image_size(true).x, image_size(true).y) : i];
   return true;
 }
 

@@ -25,7 +25,7 @@ layout(constant_id = SPEC_LAYER_STEPPING) const bool k_layer_stepping = false;
 // surface found at float precision.
 const float LAYER_OCCLUDER_MARGIN = 1e-3;
 
-bool multilayer() { return u_restir.layers > 1u; }
+bool multilayer() { return restir_layers() > 1u; }
 
 GpuDomainRange domain_range_in(bool prev, uint d) {
 #ifdef STRATA_HISTORY
@@ -42,7 +42,7 @@ uint domain_in(bool prev, uvec2 pixel, uint layer) { return prev ? prev_domain_o
 uint deep_layer_by_range(bool prev, uvec2 pixel, float d, out float range_min, out float range_max) {
   range_min = 0.0;
   range_max = 0.0;
-  for (uint i = 1u; i < u_restir.layers; ++i) {
+  for (uint i = 1u; i < restir_layers(); ++i) {
     GpuDomainRange r = domain_range_in(prev, domain_in(prev, pixel, i));
     if ((r.flags & DOMAIN_ACTIVE) != 0u && d >= r.range_min && d <= r.range_max) {
       range_min = r.range_min;
@@ -57,7 +57,7 @@ uint deep_layer_by_range(bool prev, uvec2 pixel, float d, out float range_min, o
 // LAYERS_MAX when none does. Reads ranges only (no ray): the confidence lookups of RS-main Eq. 17
 // for a representative hit moved back to the previous frame.
 uint layer_by_range(bool prev, uvec2 pixel, float d) {
-  for (uint i = 0u; i < u_restir.layers; ++i) {
+  for (uint i = 0u; i < restir_layers(); ++i) {
     GpuDomainRange r = domain_range_in(prev, domain_in(prev, pixel, i));
     if ((r.flags & DOMAIN_ACTIVE) != 0u && d >= r.range_min && d <= r.range_max) return i;
   }
@@ -97,7 +97,7 @@ LayerWalk walk_to_point(bool prev, vec3 origin, vec3 dir, SurfacePoint target, f
   for (uint step = 0u; step < 2u * LAYERS_MAX + 2u; ++step) {
     RayHit h;
     w.rays++;
-    if (!trace_closest_in(prev, origin + dir * t0, dir, 1e30, h)) break;
+    if (!trace_closest_in(prev, origin + dir * t0, dir, RAY_UNBOUNDED, h)) break;
     float t = t0 + h.t;
     if (same_triangle(h, target) || (h.instance == target.instance && abs(t - dist) <= dist * LAYER_OCCLUDER_MARGIN)) {
       w.layer = step == 0u ? 0u : behind + 1u;
@@ -110,7 +110,7 @@ LayerWalk walk_to_point(bool prev, vec3 origin, vec3 dir, SurfacePoint target, f
     } else if (dot(load_hit_in(prev, h).geo_normal, dir) < 0.0) {
       behind++;
       w.occluder = h.instance;
-      if (behind + 1u >= u_restir.layers) break;  // deeper than the k layers
+      if (behind + 1u >= restir_layers()) break;  // deeper than the k layers
     }
     t0 = step_beyond(t);
   }
@@ -124,7 +124,7 @@ bool walk_to_layer(vec3 origin, vec3 dir, uint layer, out RayHit hit, inout uint
   float t0 = 0.0;
   for (uint step = 0u; step < 2u * LAYERS_MAX + 2u; ++step) {
     rays++;
-    if (!trace_closest(origin + dir * t0, dir, 1e30, hit)) return false;
+    if (!trace_closest(origin + dir * t0, dir, RAY_UNBOUNDED, hit)) return false;
     hit.t += t0;
     if (step > 0u && dot(load_hit(hit).geo_normal, dir) < 0.0 && ++behind == layer) return true;
     t0 = step_beyond(hit.t);

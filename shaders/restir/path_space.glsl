@@ -31,7 +31,7 @@
 //
 // Moving scenes. The kept suffix after x_k is known through its radiance. When the scene moved
 // between the frames of the two domains, a sample with a non-empty suffix (0 < k < n) is handled
-// as u_restir.suffix_mode says: SUFFIX_REPLAY traces it again in the target frame (exact, both
+// as restir_suffix_mode() says: SUFFIX_REPLAY traces it again in the target frame (exact, both
 // directions: restir/suffix_replay.glsl, where its Jacobian is derived); SUFFIX_CACHED keeps the
 // stored radiance (biased: the suffix's light is that of the other frame); SUFFIX_FAIL fails the
 // shift (SHIFT_FAIL_STALE); SUFFIX_AUTO replays, except a suffix of one segment that no change can
@@ -83,7 +83,7 @@ DomainPrimary domain_primary_free() {
   d.hit.lens = 0u;
   d.hit.time = 0.0;
   d.t_min = 0.0;
-  d.t_max = 1e30;
+  d.t_max = RAY_UNBOUNDED;
   d.check_x1 = false;
   d.x1 = surface_none();
   return d;
@@ -102,7 +102,7 @@ DomainPrimary domain_primary_splat(SurfacePoint x1, float t_min, float t_max) {
 // The domain of a visibility-buffer entry when the frame fixes primary vertices, else free.
 DomainPrimary domain_primary(GpuPrimaryHit h) {
   DomainPrimary d = domain_primary_free();
-  if (u_frame.primary_mode != PRIMARY_DOMAIN) return d;
+  if (primary_mode() != PRIMARY_DOMAIN) return d;
   d.is_fixed = true;
   d.hit = h;
   return d;
@@ -205,7 +205,7 @@ PathSample shifted_sample(PathSample y, ShiftResult s) {
 bool reconnection_visible(bool prev, Vertex v, vec3 d, float dist, bool to_environment, SurfacePoint xk, INOUT(uint) rays) {
   for (uint attempt = 0u; attempt < 2u; ++attempt) {
     bool any_hit = attempt == 0u;
-    float t_max = to_environment ? 1e30 : (any_hit ? dist * (1.0 - SHADOW_RAY_SHORTEN) : dist * (1.0 + RECONNECT_SELF_TOLERANCE));
+    float t_max = to_environment ? RAY_UNBOUNDED : (any_hit ? dist * (1.0 - SHADOW_RAY_SHORTEN) : dist * (1.0 + RECONNECT_SELF_TOLERANCE));
     RayHit h;
     rays++;
     bool hit = trace_query_in(prev, spawn(v), d, t_max, any_hit, h);
@@ -261,16 +261,16 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
   bool escaped = (y.flags & SAMPLE_ESCAPED) != 0u;
   bool nee = (y.flags & SAMPLE_NEE) != 0u;
   // Paths of one segment are not resampled (restir_initial.comp): no reservoir holds one.
-  if (n < 2u || n > u_restir.max_segments || k > n || k == 1u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
+  if (n < 2u || n > restir_max_segments() || k > n || k == 1u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
   bool has_suffix = k != 0u && k < n;
-  if (suffix_changed && has_suffix && u_restir.suffix_mode == SUFFIX_FAIL) return shift_fail(r, SHIFT_FAIL_STALE);
+  if (suffix_changed && has_suffix && restir_suffix_mode() == SUFFIX_FAIL) return shift_fail(r, SHIFT_FAIL_STALE);
 #ifdef STRATA_HISTORY
-  bool replay = suffix_changed && has_suffix && (u_restir.suffix_mode == SUFFIX_REPLAY || u_restir.suffix_mode == SUFFIX_AUTO);
+  bool replay = suffix_changed && has_suffix && (restir_suffix_mode() == SUFFIX_REPLAY || restir_suffix_mode() == SUFFIX_AUTO);
 #else
   bool replay = false;  // one frame: nothing to replay
 #endif
   // The pure reconnection shift replays only the camera sample and reconnects at x_2.
-  if (u_restir.shift_mode == SHIFT_RECONNECTION && k != 2u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
+  if (restir_shift_mode() == SHIFT_RECONNECTION && k != 2u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
 
   // One loop finds every segment by replay: segment 0 is the camera ray (the sample's camera
   // sample kept; with a fixed primary vertex the domain's, whose hit is known), segment j >= 1
@@ -307,7 +307,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
     } else {
       r.rays++;
       float t0 = j == 0u ? dp.t_min : 0.0;  // a deep domain's primary ray starts at L_i (ML Eq. 4)
-      found = trace_closest_in(prev, origin + dir * t0, dir, j == 0u ? dp.t_max - t0 : 1e30, h);
+      found = trace_closest_in(prev, origin + dir * t0, dir, j == 0u ? dp.t_max - t0 : RAY_UNBOUNDED, h);
       if (j == 0u) {
         h.t += t0;
         r.primary_t = found ? h.t : 0.0;
@@ -318,7 +318,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
     if (!found) {
       if (!(path_end && escaped)) return shift_fail(r, j == 0u ? SHIFT_FAIL_PRIMARY : SHIFT_FAIL_REPLAY);
       if (rule_end(v, true, 0.0, camera_distance, 1.0)) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
-      le = u_frame.environment.rgb;
+      le = environment_radiance(dir);
       pl = light_pdf_environment(prev);
       break;
     }
@@ -396,7 +396,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
       fk = scatter(xk, dk);
       if (!(luminance(fk) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
 #ifdef STRATA_HISTORY
-      if (replay && u_restir.suffix_mode == SUFFIX_AUTO && suffix_unchanged(prev, y, xk, dk)) replay = false;
+      if (replay && restir_suffix_mode() == SUFFIX_AUTO && suffix_unchanged(prev, y, xk, dk)) replay = false;
 #endif
       if (!replay) {
         float m = 1.0;
@@ -406,7 +406,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
       }
     } else if (to_environment) {
       if (!nee && !rule_end(v, true, 0.0, camera_distance, 1.0)) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
-      tail = u_frame.environment.rgb * technique_weight(nee, light_pdf_environment(prev), scatter_pdf(v, d));
+      tail = environment_radiance(d) * technique_weight(nee, light_pdf_environment(prev), scatter_pdf(v, d));
     } else {
       float pl_k = light_pdf_emitter(prev, xk.material_emission, xk.area, xk.double_sided, dist, xk.cos_in);
       tail = xk.emission * technique_weight(nee, pl_k, scatter_pdf(v, d));
@@ -452,10 +452,10 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
 // Counts a temporal shift's suffix (COUNTER_SUFFIX_*); the rays of a replay also go to
 // `replay_rays_counter` (the pass's slot). Needs the pass's counters (restir/restir_pass.glsl).
 void count_suffix(ShiftResult s, uint replay_rays_counter) {
-  if (s.suffix == SUFFIX_KEPT) atomicAdd(b_counters[COUNTER_SUFFIX_KEPT], 1u);
+  if (s.suffix == SUFFIX_KEPT) counter_add(COUNTER_SUFFIX_KEPT, 1u);
   if (s.suffix != SUFFIX_REPLAYED) return;
-  atomicAdd(b_counters[COUNTER_SUFFIX_REPLAYED], 1u);
-  atomicAdd(b_counters[replay_rays_counter], s.replay_rays);
+  counter_add(COUNTER_SUFFIX_REPLAYED, 1u);
+  counter_add(replay_rays_counter, s.replay_rays);
 }
 #endif
 

@@ -1,7 +1,7 @@
 // Path vertices as both the candidate generator (restir_initial) and the shifts (path_space.glsl)
 // see them, so that both apply exactly the same rules: the scattering function, the light densities
 // of each frame, the technique MIS weight and the reconnectability rules (restir/reconnection.h).
-// Needs: scene_bridge.glsl, u_frame (GpuFrameConstants) and u_restir (GpuRestirConstants).
+// Needs: the scene bridge and the library context (restir/context.glsl).
 #ifndef STRATA_PATH_VERTEX_GLSL
 #define STRATA_PATH_VERTEX_GLSL
 
@@ -44,7 +44,7 @@ struct Vertex {
 
 Vertex make_vertex(SurfaceHit s, RayHit h, uint lod, vec3 dir_in) {
   Vertex v;
-  GpuMaterial m = b_materials[s.material];
+  SurfaceMaterial m = material_at(s);
   float cos_hit = dot(s.geo_normal, -dir_in);
   bool front = cos_hit > 0.0;
   v.position = s.position;
@@ -52,11 +52,11 @@ Vertex make_vertex(SurfaceHit s, RayHit h, uint lod, vec3 dir_in) {
   v.ns = front ? s.shading_normal : -s.shading_normal;
   make_onb(v.ns, v.t, v.b);
   v.wo = to_local(-dir_in, v.t, v.b, v.ns);
-  v.bsdf = make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular);
+  v.bsdf = m.bsdf;
   v.rough = rough_vertex(v.bsdf.alpha, max(v.bsdf.f0.r, max(v.bsdf.f0.g, v.bsdf.f0.b)));
-  v.double_sided = (m.flags & MATERIAL_DOUBLE_SIDED) != 0u;
-  v.material_emission = m.emission_roughness.rgb;
-  v.emission = (front || v.double_sided) ? m.emission_roughness.rgb : vec3(0.0);
+  v.double_sided = m.double_sided;
+  v.material_emission = m.emission;
+  v.emission = (front || v.double_sided) ? m.emission : vec3(0.0);
   v.area = s.area;
   v.cos_in = abs(cos_hit);
   v.n_surface = s.shading_normal;
@@ -122,25 +122,17 @@ vec3 surface_to_world(Vertex v, vec3 l) { return frame_to_world(v.n_surface, l);
 
 vec3 spawn(Vertex v) { return offset_ray_origin(v.position, v.ng); }
 
-// Light-sampling densities of either frame (sampling/emitter_pdf.h with that frame's totals).
-bool env_is_sampled() { return u_frame.environment.a > 0.0; }
-
+// The light-sampling density of an emitter point that a path reached by BSDF sampling, in either
+// frame (the scene bridge's, sanitized like every weight; light_pdf_environment is the bridge's).
 float light_pdf_emitter(bool prev, vec3 emission, float area, bool double_sided, float dist, float cos_light) {
-  float total = prev ? u_frame.prev_total_emitter_power : u_frame.total_emitter_power;
-  float env_select = prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob;
-  return gris_sanitize(emitter_solid_angle_pdf(total, env_select, emission, area, double_sided, dist, cos_light));
-}
-
-float light_pdf_environment(bool prev) {
-  if (!env_is_sampled()) return 0.0;
-  return (prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob) * (1.0 / (4.0 * PI));
+  return gris_sanitize(emitter_light_pdf(prev, emission, area, double_sided, dist, cos_light));
 }
 
 // The MIS weight of the technique that produced the path's last vertex, power heuristic with the
 // number of light candidates per vertex (Veach 1997 9.2.4); it is part of the target function, so
 // NEE and BSDF sampling of the same path are two disjoint parts of the sample space.
 float technique_weight(bool nee, float light_pdf, float bsdf_pdf_value) {
-  float pl = float(u_restir.light_candidates) * light_pdf;
+  float pl = float(restir_light_candidates()) * light_pdf;
   return nee ? mis_power(pl, bsdf_pdf_value) : mis_power(bsdf_pdf_value, pl);
 }
 

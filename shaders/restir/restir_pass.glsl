@@ -1,5 +1,6 @@
-// Declarations every ReSTIR pass shares: frame and method constants, counters, the reservoir
-// buffers, and packing helpers. A pass includes it after the scene bridge.
+// Declarations every ReSTIR pass shares: method constants, counters, the reservoir buffers, and
+// packing helpers; and the ReSTIR library's context (restir/context.glsl) implemented on them and
+// on the frame's constants (declared by the scene bridge). A pass includes it after the scene bridge.
 #ifndef STRATA_RESTIR_PASS_GLSL
 #define STRATA_RESTIR_PASS_GLSL
 
@@ -9,29 +10,46 @@
 #include "restir/gris.h"
 #include "restir/reservoir.h"
 #include "restir/restir_data.h"
+#include "restir/rng_streams.h"
+#include "restir/context.glsl"
 
-layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
 layout(set = 0, binding = BINDING_RESTIR, std140) uniform Restir { GpuRestirConstants u_restir; };
 layout(set = 0, binding = BINDING_COUNTERS, std430) buffer Counters { uint b_counters[]; };
 layout(set = 0, binding = BINDING_RESERVOIRS_OUT, std430) buffer ReservoirsOut { PackedReservoir b_out[]; };
 layout(set = 0, binding = BINDING_CONTRIBUTION, std430) buffer Contribution { vec4 b_contribution[]; };
+
+// The library's context (restir/context.glsl).
+uvec2 image_size(bool prev) { return prev ? uvec2(u_frame.prev_width, u_frame.prev_height) : uvec2(u_frame.width, u_frame.height); }
+Rng frame_rng(uint key, uint salt) { return rng_init(key, salt, u_frame.frame_index, u_frame.seed); }
+uint frame_key(uint key, uint stream) { return rng_key(key, stream, u_frame.frame_index, u_frame.seed); }
+uint history_flags() { return u_frame.history_flags; }
+uint primary_mode() { return u_frame.primary_mode; }
+uint time_partitions() { return u_frame.time_partitions; }
+uint restir_layers() { return u_restir.layers; }
+uint restir_max_segments() { return u_restir.max_segments; }
+uint restir_light_candidates() { return u_restir.light_candidates; }
+uint restir_shift_mode() { return u_restir.shift_mode; }
+uint restir_suffix_mode() { return u_restir.suffix_mode; }
+float restir_spatial_radius() { return u_restir.spatial_radius; }
+void counter_add(uint counter, uint n) { atomicAdd(b_counters[counter], n); }
+void counter_max(uint counter, uint n) { atomicMax(b_counters[counter], n); }
 
 #ifdef STRATA_HISTORY
 // Counts a surface resolution across a LoD switch (COUNTER_LOD_*).
 void count_lod_mapping(ResolvedSurface r) {
   if (r.lod_mapping == LOD_MAPPING_NONE) return;
   if (r.lod_mapping == LOD_FAIL_OFF) {
-    atomicAdd(b_counters[COUNTER_LOD_REFUSED], 1u);
+    counter_add(COUNTER_LOD_REFUSED, 1u);
     return;
   }
-  atomicAdd(b_counters[COUNTER_LOD_MAPPINGS], 1u);
-  atomicAdd(b_counters[COUNTER_LOD_UV_RAYS], r.uv_rays);
+  counter_add(COUNTER_LOD_MAPPINGS, 1u);
+  counter_add(COUNTER_LOD_UV_RAYS, r.uv_rays);
   uint c = r.lod_mapping == LOD_MAPPED_UNIQUE    ? COUNTER_LOD_UNIQUE
            : r.lod_mapping == LOD_MAPPED_MATCHED ? COUNTER_LOD_MATCHED
            : r.lod_mapping == LOD_FAIL_OUTSIDE   ? COUNTER_LOD_FAIL_OUTSIDE
            : r.lod_mapping == LOD_FAIL_AMBIGUOUS ? COUNTER_LOD_FAIL_AMBIGUOUS
                                                  : COUNTER_LOD_FAIL_DEGENERATE;
-  atomicAdd(b_counters[c], 1u);
+  counter_add(c, 1u);
 }
 #endif
 
@@ -102,7 +120,7 @@ void store_output(uint index, Reservoir r, vec3 f, vec3 estimate) {
   bool finite = !(isnan(r.ucw) || isinf(r.ucw) || isnan(r.p_hat) || isinf(r.p_hat) || any(isnan(f)) || any(isinf(f)) ||
                   any(isnan(estimate)) || any(isinf(estimate)));
   if (!finite) {
-    atomicAdd(b_counters[COUNTER_NONFINITE_REJECTED], 1u);
+    counter_add(COUNTER_NONFINITE_REJECTED, 1u);
     float c = r.confidence;
     r = reservoir_empty();
     r.confidence = isnan(c) || isinf(c) ? 0.0 : c;
@@ -112,6 +130,25 @@ void store_output(uint index, Reservoir r, vec3 f, vec3 estimate) {
   b_out[index] = pack_reservoir(r);
   b_contribution[index] = vec4(f, 0.0);
   b_contribution[estimate_index(index)] = vec4(estimate, 0.0);
+}
+
+// The last step of every resampling pass (temporal, spatial, splat_resample): the output reservoir
+// of domain `index` is the selected candidate `selected` (its f(Y) `f`) with the stream's p-hat of
+// it and its unbiased contribution weight W = (1 / p-hat(Y)) sum_i w_i (RS-main Eq. 5), and
+// `confidence`; empty, keeping the confidence, when the stream selected nothing. It is written
+// with the domain's estimate over the stream's candidates (store_output).
+void finalise_reservoir(uint index, GrisState st, Reservoir selected, vec3 f, float confidence) {
+  Reservoir r = selected;
+  r.p_hat = st.selected_p_hat;
+  r.ucw = gris_ucw(st);  // RS-main Eq. 5
+  r.confidence = confidence;
+  if (st.selected == GRIS_NONE) {
+    r = reservoir_empty();
+    r.confidence = confidence;
+    f = vec3(0.0);
+  }
+  if (st.rejected > 0u) counter_add(COUNTER_NONFINITE_REJECTED, st.rejected);
+  store_output(index, r, f, st.estimate);
 }
 
 #endif

@@ -16,7 +16,7 @@ bool centre_hit_on(GpuPrimaryHit h, uint instance, float d) {
 // instance at d inside it is seen. False means "trace to know".
 bool seen_in_pixel(bool prev, uvec2 pixel, uint instance, float d) {
   const ivec2 offsets[5] = ivec2[5](ivec2(0, 0), ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1));
-  ivec2 last = ivec2(prev ? u_frame.prev_width : u_frame.width, prev ? u_frame.prev_height : u_frame.height) - 1;
+  ivec2 last = ivec2(image_size(prev)) - 1;
   for (uint n = 0u; n < 5u; ++n) {
     uvec2 q = uvec2(clamp(ivec2(pixel) + offsets[n], ivec2(0), last));
     // (if/else, not ?:, so that glslang copies each block's struct member by member)

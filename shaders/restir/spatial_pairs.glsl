@@ -15,6 +15,7 @@
 #define STRATA_SPATIAL_PAIRS_GLSL
 
 #include "restir/spatial_pair_data.h"
+#include "restir/rng_streams.h"
 #include "sampling/rng.h"
 #include "sampling/warp.h"
 
@@ -27,12 +28,12 @@ uint pair_slots() { return 2u * min(k_pair_offsets, SPATIAL_MAX_PAIR_OFFSETS); }
 // The frame's pair offsets o_0 .. o_{k_pair_offsets - 1}. A radius that holds too few pixels for
 // distinct offsets falls back to unit steps along x (each distinct as long as the image is wider).
 void spatial_pair_offsets(out ivec2 o[SPATIAL_MAX_PAIR_OFFSETS]) {
-  Rng rng = rng_init(0u, 0x9A125u, u_frame.frame_index, u_frame.seed);
+  Rng rng = frame_rng(0u, RNG_SALT_SPATIAL_PAIRS);
   for (uint m = 0u; m < SPATIAL_MAX_PAIR_OFFSETS; ++m) {
     o[m] = ivec2(int(m) + 1, 0);
     if (m >= k_pair_offsets) continue;
     for (uint t = 0u; t < 32u; ++t) {
-      ivec2 d = ivec2(round(sample_concentric_disk(rng_next_float2(rng)) * u_restir.spatial_radius));
+      ivec2 d = ivec2(round(sample_concentric_disk(rng_next_float2(rng)) * restir_spatial_radius()));
       bool fresh = d != ivec2(0);
       for (uint l = 0u; l < m; ++l) fresh = fresh && d != o[l] && d != -o[l];
       if (fresh) {

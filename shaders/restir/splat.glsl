@@ -36,7 +36,7 @@ struct ShiftJob {
   float camera_ratio;  // splat: |du/dv| of RS-main Eq. 14-16 (reprojection.h); gather: 1
   float time_ratio;    // splat: 1/K forward, K reverse (RS-main 4.4.3); gather: 1 (time kept)
   // Multi-layer splatting (restir/layers.glsl): the target domain's layer, the depth range its
-  // primary ray is restricted to (0 and 1e30 for the front layer), and x_1's camera distance.
+  // primary ray is restricted to (0 and RAY_UNBOUNDED for the front layer), and x_1's camera distance.
   uint layer;
   float t_min;
   float t_max;
@@ -47,7 +47,7 @@ struct ShiftJob {
 
 // K: the time partitions of this frame's shutter (1 when the camera does not move over it), as the
 // host computed it (render/frame_constants.h time_partitions) and dispatches the splat passes.
-uint splat_partitions() { return u_frame.time_partitions; }
+uint splat_partitions() { return time_partitions(); }
 
 // Splat of sample y (of the other frame) into the current (prev = false) or previous frame:
 // projection, and the camera part of the Jacobian. Forward, `time_partition` is the time time_partition n
@@ -63,7 +63,7 @@ ShiftJob splat_prepare(bool prev, PathSample y, uint time_partition) {
   job.camera_ratio = 0.0;
   job.layer = 0u;
   job.t_min = 0.0;
-  job.t_max = 1e30;
+  job.t_max = RAY_UNBOUNDED;
   job.distance = 0.0;
   job.ray_origin = vec3(0.0);
   job.ray_dir = vec3(0.0, 0.0, 1.0);
@@ -91,10 +91,12 @@ ShiftJob splat_prepare(bool prev, PathSample y, uint time_partition) {
   SurfaceHit to = y1_to.hit;
   GpuCamera cam_from = camera_at(!prev, y.time);
   GpuCamera cam_to = camera_at(prev, time_to);
-  uint w_from = prev ? u_frame.width : u_frame.prev_width;
-  uint h_from = prev ? u_frame.height : u_frame.prev_height;
-  uint w_to = prev ? u_frame.prev_width : u_frame.width;
-  uint h_to = prev ? u_frame.prev_height : u_frame.height;
+  uvec2 size_from = image_size(!prev);
+  uvec2 size_to = image_size(prev);
+  uint w_from = size_from.x;
+  uint h_from = size_from.y;
+  uint w_to = size_to.x;
+  uint h_to = size_to.y;
   vec3 o_to = lens_point(cam_to, y.lens);
   uvec2 pixel;
   vec2 jitter;
@@ -130,12 +132,12 @@ bool splat_deeper(INOUT(ShiftJob) job, ShiftResult failed) {
     return false;
   if (k_layer_stepping) {
     LayerWalk w = walk_to_point(job.prev, job.ray_origin, job.ray_dir, job.y.x1, job.distance);
-    atomicAdd(b_counters[COUNTER_SPLAT_STEP_RAYS], w.rays);
-    if (w.layer == 0u || w.layer >= u_restir.layers) return false;
+    counter_add(COUNTER_SPLAT_STEP_RAYS, w.rays);
+    if (w.layer == 0u || w.layer >= restir_layers()) return false;
     if ((domain_range_in(job.prev, domain_in(job.prev, uvec2(job.pixel), w.layer)).flags & DOMAIN_ACTIVE) == 0u) return false;
     job.layer = w.layer;
     job.t_min = w.t_start;
-    job.t_max = 1e30;
+    job.t_max = RAY_UNBOUNDED;
     return true;
   }
   float l;
@@ -161,7 +163,7 @@ ShiftJob gather_prepare(bool prev, vec2 pixel, PathSample y) {
   job.time_ratio = 1.0;
   job.layer = 0u;
   job.t_min = 0.0;
-  job.t_max = 1e30;
+  job.t_max = RAY_UNBOUNDED;
   job.distance = 0.0;
   job.ray_origin = vec3(0.0);
   job.ray_dir = vec3(0.0, 0.0, 1.0);

@@ -30,7 +30,6 @@
 
 #include "restir/path_vertex.glsl"
 #include "restir/restir_data.h"
-#include "sampling/light_sampling.glsl"
 #include "sampling/rng.h"
 
 struct SuffixReplay {
@@ -47,64 +46,19 @@ SuffixReplay replay_fail(SuffixReplay r, uint reason) {
   return r;
 }
 
-// Light sample u from x in either frame. The current frame's is the initial pass's sample_light;
-// in the previous frame the same emitter and barycentrics are chosen and the point is placed on
-// its triangle as the previous frame's instance transform had it (resolve_surface).
-bool sample_light_in(bool prev, vec3 x, vec3 u, out LightSample ls) {
-  if (!prev) return sample_light(x, u, u_frame, ls);
-  ls = light_sample_none();
-  uint index;
-  if (!choose_light(u, u_frame, index)) return false;
-  if (index == LIGHT_ENVIRONMENT) {
-    ls = environment_light_sample(u, u_frame);
-    ls.pdf = light_pdf_environment(true);
-    return ls.pdf > 0.0;
-  }
-  GpuEmitter e = b_emitters[index];
-  vec2 b = sample_triangle_barycentrics(u.xy);
-  SurfacePoint p;
-  p.instance = e.surface.x;
-  p.geometry = e.surface.y;
-  p.triangle = e.surface.z;
-  p.bary = e.surface.w != 0u ? b.yx : b;  // undo the re-winding of mirrored instances
-  p.lod = instance_in(false, p.instance).lod;
-  ResolvedSurface rs = resolve_surface_as(true, p, LOD_VERTEX_NONE);  // a light point: never mapped (its light is chosen anew)
-  if (rs.reason != RESOLVE_OK) return false;
-  vec3 d = rs.hit.position - x;
-  float dist2 = dot(d, d);
-  if (!(dist2 > 0.0)) return false;
-  float dist = sqrt(dist2);
-  ls.direction = d / dist;
-  ls.distance = dist;
-  float cos_light = -dot(rs.hit.geo_normal, ls.direction);
-  bool double_sided = (floatBitsToUint(e.p2_flags.w) & MATERIAL_DOUBLE_SIDED) != 0u;
-  if (cos_light <= 0.0 && !double_sided) return false;  // one-sided emitter seen from behind
-  ls.radiance = e.emission.rgb;
-  ls.instance = p.instance;
-  ls.geometry = p.geometry;
-  ls.triangle = p.triangle;
-  ls.bary = p.bary;
-  ls.area = rs.hit.area;
-  ls.cos_light = abs(cos_light);
-  ls.pdf = light_pdf_emitter(true, e.emission.rgb, rs.hit.area, double_sided, dist, ls.cos_light);
-  return ls.pdf > 0.0 && !isinf(ls.pdf);
-}
-
 // suffix auto: whether y's suffix after x_k is the same in the target frame as in y's own, so that
 // its stored radiance and end density are exactly what replay_suffix would compute there. Decided
 // without tracing for a suffix of one segment (k + 1 = n: from x_k along omega'_k to the end, an
 // emitter or the environment): x_k's instance did not change (so x_k and omega'_k are the same
 // world point and direction in both frames), the emitter power total that the end's density
-// depends on is equal (to 1e-5: with the camera, render-space emitter areas change in their last
-// bits, as GpuScene's light-selection test allows; the environment's share is a session constant),
+// depends on is equal (light_totals_unchanged, include/scene_lights.glsl),
 // and the ray misses the swept box of every instance that changed (ray_meets_change),
 // so that it meets the same unchanged surfaces in both frames (x_k on a changed instance lies inside
 // that instance's box, so the first test only saves the loop). Longer suffixes are replayed: their
 // later vertices are not known without tracing them.
 bool suffix_unchanged(bool prev, PathSample y, Vertex xk, vec3 dk) {
   if (y.k + 1u != y.segments || instance_changes(y.xk.instance) != 0u) return false;
-  float power = max(u_frame.total_emitter_power, u_frame.prev_total_emitter_power);
-  if (abs(u_frame.total_emitter_power - u_frame.prev_total_emitter_power) > 1e-5 * power) return false;
+  if (!light_totals_unchanged()) return false;
   return !ray_meets_change(prev, xk.position, dk);
 }
 
@@ -131,7 +85,7 @@ SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {
     bool light_sample = last && nee && j > y.k;
     LightSample ls = light_sample_none();
     if (light_sample) {
-      if ((u_frame.history_flags & HISTORY_LIGHTS_RESELECTED) != 0u) return replay_fail(r, SHIFT_FAIL_STALE);
+      if ((history_flags() & HISTORY_LIGHTS_RESELECTED) != 0u) return replay_fail(r, SHIFT_FAIL_STALE);
       uint base = dim_vertex(j) + DIM_NEE + 3u * y.light_index;
       vec3 ul = vec3(rng_dim(y.seed, base), rng_dim(y.seed, base + 1u), rng_dim(y.seed, base + 2u));
       if (!sample_light_in(prev, v.position, ul, ls)) return replay_fail(r, SHIFT_FAIL_REPLAY);
@@ -144,7 +98,7 @@ SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {
       beta *= fs;
       r.suffix_density *= pdf;
     }
-    float t_max = light_sample && !isinf(ls.distance) ? ls.distance * (1.0 - SHADOW_RAY_SHORTEN) : 1e30;
+    float t_max = light_sample && !isinf(ls.distance) ? ls.distance * (1.0 - SHADOW_RAY_SHORTEN) : RAY_UNBOUNDED;
     RayHit h;
     r.rays++;
     bool hit = trace_query_in(prev, spawn(v), dir, t_max, light_sample, h);
@@ -158,7 +112,7 @@ SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {
       return r;
     }
     if (hit == (last && escaped)) return replay_fail(r, SHIFT_FAIL_REPLAY);  // must hit, or escape at an escaped end
-    vec3 le = u_frame.environment.rgb;
+    vec3 le = environment_radiance(dir);
     float pl = light_pdf_environment(prev);
     if (hit) {
       Vertex w = load_vertex(prev, h, dir);

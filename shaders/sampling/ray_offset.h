@@ -12,6 +12,9 @@ CONST_DEF float RAY_OFFSET_FLOAT_SCALE = 1.0f / 65536.0f;
 CONST_DEF float RAY_OFFSET_INT_SCALE = 256.0f;
 // Visibility rays stop this fraction short of their target (docs/ARCHITECTURE.md, Robustness).
 CONST_DEF float SHADOW_RAY_SHORTEN = 1e-4f;
+// The t_max of a ray without an end (a camera, BSDF or environment ray: its closest hit, or none):
+// farther than anything a scene holds. Also the far end of the front layer's depth range.
+CONST_DEF float RAY_UNBOUNDED = 1e30f;
 
 INLINE float offset_component(float p, float n) {
   // Near the origin a float offset; elsewhere a few ulps in integer space. The integer path only

@@ -1,0 +1,202 @@
+// The lights of the scene bridge (include/scene_bridge.glsl includes this file at its end; a pass
+// includes the bridge, never this file): next-event estimation's light sample and its density in
+// either frame, the density of a light hit by another strategy, and the environment. Emissive
+// triangles are chosen by power through an alias table, the constant environment with probability
+// env_select_prob. Solid-angle densities throughout. The emitter records and the frame's light
+// totals are read here only.
+#ifndef STRATA_SCENE_LIGHTS_GLSL
+#define STRATA_SCENE_LIGHTS_GLSL
+
+#include "include/bindings.h"
+#include "include/frame_data.h"
+#include "include/scene_data.h"
+#include "restir/gris.h"
+#include "sampling/emitter_pdf.h"
+#include "sampling/warp.h"
+
+layout(set = 0, binding = BINDING_EMITTERS, std430) readonly buffer Emitters { GpuEmitter b_emitters[]; };
+layout(set = 0, binding = BINDING_ALIAS, std430) readonly buffer Alias { GpuAliasEntry b_alias[]; };
+
+struct LightSample {
+  vec3 direction;     // unit, from the shading point
+  float distance;     // to the sampled point; infinite for the environment
+  vec3 radiance;      // emitted towards the shading point (0 if it sees the back face)
+  float pdf;          // solid angle, including the selection probability
+  // The sampled point as a surface point (what a ReSTIR path sample stores), unset for the environment.
+  uint instance;
+  uint geometry;
+  uint triangle;
+  vec2 bary;          // hit-convention barycentrics (weights of the triangle's vertices 1 and 2)
+  float area;         // render-space triangle area
+  float cos_light;    // |cos| at the emitter towards the shading point
+};
+
+// Solid-angle density of sampling a point on an emitter of `area` seen at `distance` under
+// `cos_light`, given its selection probability (of a sampled emitter: its alias-table pmf; an
+// emitter hit by another strategy uses sampling/emitter_pdf.h).
+float emitter_pdf_solid_angle(float select_pmf, float area, float distance, float cos_light) {
+  if (!(area > 0.0)) return 0.0;
+  return area_to_solid_angle_pdf(select_pmf / area, distance * distance, cos_light);
+}
+
+// The environment's radiance arriving along -dir (a constant; the same in both frames).
+vec3 environment_radiance(vec3 dir) { return u_frame.environment.rgb; }
+
+// Whether the environment emits at all (a camera ray that escapes sees emission).
+bool environment_emits() { return luminance(u_frame.environment.rgb) > 0.0; }
+
+// Whether next-event estimation samples the environment.
+bool env_is_sampled() { return u_frame.environment.a > 0.0; }
+
+float environment_pdf() { return u_frame.env_select_prob * (1.0 / (4.0 * PI)); }
+
+// The densities with which either frame's light sampler picks a light that another strategy hit
+// (sampling/emitter_pdf.h with that frame's totals): an emitter's point, and the environment.
+float emitter_light_pdf(bool prev, vec3 emission, float area, bool double_sided, float dist, float cos_light) {
+  float total = prev ? u_frame.prev_total_emitter_power : u_frame.total_emitter_power;
+  float env_select = prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob;
+  return emitter_solid_angle_pdf(total, env_select, emission, area, double_sided, dist, cos_light);
+}
+
+float light_pdf_environment(bool prev) {
+  if (!env_is_sampled()) return 0.0;
+  return (prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob) * (1.0 / (4.0 * PI));
+}
+
+// Whether the emitter power totals of the two frames agree (to 1e-5: with the camera, render-space
+// emitter areas change in their last bits, as GpuScene's light-selection test allows; the
+// environment's share is a session constant), so that a light density is the same in both.
+bool light_totals_unchanged() {
+  float power = max(u_frame.total_emitter_power, u_frame.prev_total_emitter_power);
+  return !(abs(u_frame.total_emitter_power - u_frame.prev_total_emitter_power) > 1e-5 * power);
+}
+
+LightSample light_sample_none() {
+  LightSample ls;
+  ls.direction = vec3(0.0, 0.0, 1.0);
+  ls.distance = 0.0;
+  ls.radiance = vec3(0.0);
+  ls.pdf = 0.0;
+  ls.instance = 0xFFFFFFFFu;
+  ls.geometry = 0u;
+  ls.triangle = 0u;
+  ls.bary = vec2(0.0);
+  ls.area = 0.0;
+  ls.cos_light = 1.0;
+  return ls;
+}
+
+const uint LIGHT_ENVIRONMENT = 0xFFFFFFFFu;
+
+// The light that random numbers u choose: LIGHT_ENVIRONMENT, or an emitter of the alias table
+// (u.z, rescaled, picks the column and its coin; u.xy is left for the point on it). False when
+// there is nothing to choose.
+bool choose_light(vec3 u, out uint index) {
+  index = LIGHT_ENVIRONMENT;
+  if (u.z < u_frame.env_select_prob || u_frame.emitter_count == 0u) return u_frame.env_select_prob > 0.0;
+  float v = (u.z - u_frame.env_select_prob) / (1.0 - u_frame.env_select_prob);
+  float scaled = v * float(u_frame.emitter_count);
+  uint column = min(uint(scaled), u_frame.emitter_count - 1u);
+  float coin = scaled - float(column);
+  GpuAliasEntry entry = b_alias[column];
+  index = coin < entry.threshold ? column : entry.alias;
+  return true;
+}
+
+// The environment as light sample u chose it.
+LightSample environment_light_sample(vec3 u) {
+  LightSample ls = light_sample_none();
+  ls.direction = sample_uniform_sphere(u.xy);
+  ls.distance = 1.0 / 0.0;
+  ls.radiance = environment_radiance(ls.direction);
+  ls.pdf = environment_pdf();
+  return ls;
+}
+
+// The current frame's light sample u seen from x (its radiance and solid-angle density); false when
+// it is unusable (a one-sided emitter seen from behind, a degenerate triangle).
+bool sample_light(vec3 x, vec3 u, out LightSample ls) {
+  ls = light_sample_none();
+  uint index;
+  if (!choose_light(u, index)) return false;
+  if (index == LIGHT_ENVIRONMENT) {
+    ls = environment_light_sample(u);
+    return true;
+  }
+  GpuEmitter e = b_emitters[index];
+
+  vec2 b = sample_triangle_barycentrics(u.xy);
+  vec3 p0 = e.p0_area.xyz;
+  vec3 p1 = e.p1_pmf.xyz;
+  vec3 p2 = e.p2_flags.xyz;
+  vec3 y = (1.0 - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
+  vec3 d = y - x;
+  float dist2 = dot(d, d);
+  if (!(dist2 > 0.0)) return false;
+  float dist = sqrt(dist2);
+  ls.direction = d / dist;
+  ls.distance = dist;
+  vec3 c = cross(p1 - p0, p2 - p0);
+  float clen = length(c);
+  if (!(clen > 0.0)) return false;
+  vec3 n_light = c / clen;
+  float cos_light = -dot(n_light, ls.direction);
+  bool double_sided = (floatBitsToUint(e.p2_flags.w) & MATERIAL_DOUBLE_SIDED) != 0u;
+  if (cos_light <= 0.0 && !double_sided) return false;  // one-sided emitter seen from behind
+  ls.radiance = e.emission.rgb;
+  ls.instance = e.surface.x;
+  ls.geometry = e.surface.y;
+  ls.triangle = e.surface.z;
+  ls.bary = e.surface.w != 0u ? b.yx : b;  // undo the re-winding of mirrored instances
+  ls.area = e.p0_area.w;
+  ls.cos_light = abs(cos_light);
+  float pmf = (1.0 - u_frame.env_select_prob) * e.p1_pmf.w;
+  ls.pdf = emitter_pdf_solid_angle(pmf, e.p0_area.w, dist, cos_light);
+  return ls.pdf > 0.0 && !isinf(ls.pdf);
+}
+
+// Light sample u from x in either frame (the NEE end of a replayed suffix, restir/suffix_replay.glsl).
+// The current frame's is the initial pass's sample_light;
+// in the previous frame the same emitter and barycentrics are chosen and the point is placed on
+// its triangle as the previous frame's instance transform had it (resolve_surface).
+bool sample_light_in(bool prev, vec3 x, vec3 u, out LightSample ls) {
+  if (!prev) return sample_light(x, u, ls);
+  ls = light_sample_none();
+  uint index;
+  if (!choose_light(u, index)) return false;
+  if (index == LIGHT_ENVIRONMENT) {
+    ls = environment_light_sample(u);
+    ls.pdf = light_pdf_environment(true);
+    return ls.pdf > 0.0;
+  }
+  GpuEmitter e = b_emitters[index];
+  vec2 b = sample_triangle_barycentrics(u.xy);
+  SurfacePoint p;
+  p.instance = e.surface.x;
+  p.geometry = e.surface.y;
+  p.triangle = e.surface.z;
+  p.bary = e.surface.w != 0u ? b.yx : b;  // undo the re-winding of mirrored instances
+  p.lod = instance_in(false, p.instance).lod;
+  ResolvedSurface rs = resolve_surface_as(true, p, LOD_VERTEX_NONE);  // a light point: never mapped (its light is chosen anew)
+  if (rs.reason != RESOLVE_OK) return false;
+  vec3 d = rs.hit.position - x;
+  float dist2 = dot(d, d);
+  if (!(dist2 > 0.0)) return false;
+  float dist = sqrt(dist2);
+  ls.direction = d / dist;
+  ls.distance = dist;
+  float cos_light = -dot(rs.hit.geo_normal, ls.direction);
+  bool double_sided = (floatBitsToUint(e.p2_flags.w) & MATERIAL_DOUBLE_SIDED) != 0u;
+  if (cos_light <= 0.0 && !double_sided) return false;  // one-sided emitter seen from behind
+  ls.radiance = e.emission.rgb;
+  ls.instance = p.instance;
+  ls.geometry = p.geometry;
+  ls.triangle = p.triangle;
+  ls.bary = p.bary;
+  ls.area = rs.hit.area;
+  ls.cos_light = abs(cos_light);
+  ls.pdf = gris_sanitize(emitter_light_pdf(true, e.emission.rgb, rs.hit.area, double_sided, dist, ls.cos_light));
+  return ls.pdf > 0.0 && !isinf(ls.pdf);
+}
+
+#endif
