@@ -59,7 +59,11 @@ int run_serve(ServeArgs& a) {
             << (a.config.security.tls_client_ca.empty() ? "" : " with client certificates")
             << (a.config.security.auth_token_file.empty() ? "" : "; bearer token") << ")" << std::endl;
   if (ops.metrics_enabled()) std::cout << "stratad: metrics on http://" << ops.metrics_address() << "/metrics" << std::endl;
-  if (ops.http_enabled()) std::cout << "stratad: dashboard on http://" << ops.http_address() << "/dashboard" << std::endl;
+  if (ops.http_enabled()) {
+    const std::string scheme = a.config.security.tls_cert.empty() ? "http://" : "https://";
+    std::cout << "stratad: dashboard on " << scheme << ops.http_address() << "/dashboard" << std::endl;
+    std::cout << "stratad: viewer on " << scheme << ops.http_address() << "/view" << std::endl;
+  }
 
   int sig = 0;
   sigwait(&signals, &sig);
@@ -96,7 +100,7 @@ Runner add_serve_command(CLI::App& app) {
   cmd->add_option("--device", a->device, "Vulkan device name substring (default: $STRATA_DEVICE, else lavapipe)");
   cmd->add_flag("--validation", a->validation, "enable the Khronos validation layer");
   cmd->add_option("--metrics-listen", a->ops.metrics_listen, "host:port of the Prometheus /metrics page (e.g. 127.0.0.1:9464; off when not given)");
-  cmd->add_option("--http", a->ops.http_listen, "host:port of the live dashboard (/dashboard, /events) and probes (/healthz, /readyz); off when not given");
+  cmd->add_option("--http", a->ops.http_listen, "host:port of the live dashboard (/dashboard, /events), the viewer (/view) and probes (/healthz, /readyz); off when not given");
   // Scale-out and security (deploy/, service/auth_gate.h, service/tls_credentials.h).
   auto& sec = c.security;
   cmd->add_option("--instance-id", c.instance_id, "sent as x-strata-instance on every response (default: hostname-pid)");

@@ -4,11 +4,16 @@
 #include <vector>
 
 #include <CivetServer.h>
+#include <openssl/ssl.h>
+
+#include "http/viewer_socket.h"
+#include "service/tls_credentials.h"
 
 namespace strata::http {
 namespace {
 
 constexpr auto k_keepalive = std::chrono::seconds(10);  // a comment line: notices viewers that left
+constexpr int k_viewer_timeout_ms = 60'000;  // a viewer socket silent this long is closed (the page pings every 15 s)
 
 bool send_all(mg_connection* conn, const std::string& text) { return mg_write(conn, text.data(), text.size()) == int(text.size()); }
 
@@ -21,13 +26,14 @@ void respond(mg_connection* conn, int status, const char* reason, const char* ty
 
 class PageHandler final : public CivetHandler {
  public:
+  explicit PageHandler(std::string page) : page_(std::move(page)) {}
   bool handleGet(CivetServer*, mg_connection* conn) override {
     respond(conn, 200, "OK", "text/html; charset=utf-8", page_);
     return true;
   }
 
  private:
-  const std::string page_ = dashboard_page();
+  const std::string page_;
 };
 
 class EventsHandler final : public CivetHandler {
@@ -75,18 +81,54 @@ class ProbeHandler final : public CivetHandler {
   const bool readiness_;
 };
 
+int init_tls(void* ssl_ctx, void* user_data) {
+  const auto* server = static_cast<const CivetServer*>(user_data);
+  const auto* files = static_cast<const TlsFiles*>(server->getUserContext());
+  auto* ctx = static_cast<SSL_CTX*>(ssl_ctx);
+  if (SSL_CTX_use_certificate_chain_file(ctx, files->cert.c_str()) != 1) return -1;
+  if (SSL_CTX_use_PrivateKey_file(ctx, files->key.c_str(), SSL_FILETYPE_PEM) != 1) return -1;
+  return SSL_CTX_check_private_key(ctx) == 1 ? 1 : -1;
+}
+
+// As service::check_exposure for --listen: beyond loopback only with TLS or a token.
+void check_http_exposure(const std::string& listen, const service::SecurityConfig& s) {
+  if (s.insecure || service::is_loopback_listen(listen) || !s.tls_cert.empty() || !s.auth_token_file.empty()) return;
+  throw std::invalid_argument("--http " + listen +
+                              " reaches beyond loopback without TLS or a token: give --tls-cert/--tls-key or --auth-token-file "
+                              "(the viewer's socket then asks for it), or --insecure to serve it in the clear anyway");
+}
+
 }  // namespace
 
 HttpServer::HttpServer(const std::string& listen, service::ServiceCore& core, std::shared_ptr<DashboardHub> hub) : hub_(std::move(hub)) {
-  // Enough workers for every viewer's event stream plus pages and probes.
-  const std::vector<std::string> options = {"listening_ports", listen, "num_threads", std::to_string(DashboardHub::k_max_viewers + 4)};
-  try {
-    server_ = std::make_unique<CivetServer>(options);
-  } catch (const std::exception& e) {
-    throw std::runtime_error("--http = '" + listen + "': cannot listen (" + e.what() + ")");
+  const auto& security = core.config.security;
+  check_http_exposure(listen, security);
+  tls_ = !security.tls_cert.empty();
+  tls_files_ = std::make_unique<TlsFiles>(TlsFiles{security.tls_cert.string(), security.tls_key.string()});
+  if (tls_) {  // readable PEM files, named by their flag, before civetweb's less telling error
+    service::read_pem("--tls-cert", tls_files_->cert);
+    service::read_pem("--tls-key", tls_files_->key);
   }
-  handlers_.push_back(std::make_unique<PageHandler>());
+  std::shared_ptr<const service::BearerToken> token;
+  if (!security.auth_token_file.empty())
+    token = std::make_shared<const service::BearerToken>(service::BearerToken::load(security.auth_token_file));
+  // Enough workers for every dashboard event stream and viewer socket plus pages and probes.
+  const size_t threads = DashboardHub::k_max_viewers + ViewerSocketHandler::k_max_viewers + 4;
+  const std::vector<std::string> options = {"listening_ports", listen + (tls_ ? "s" : ""), "num_threads", std::to_string(threads),
+                                            "websocket_timeout_ms", std::to_string(k_viewer_timeout_ms)};
+  CivetCallbacks callbacks;
+  if (tls_) callbacks.init_ssl = init_tls;
+  try {
+    server_ = std::make_unique<CivetServer>(options, &callbacks, tls_files_.get());
+  } catch (const std::exception& e) {
+    throw std::runtime_error("--http = '" + listen + "': cannot listen" + (tls_ ? " with TLS" : "") + " (" + e.what() + ")");
+  }
+  handlers_.push_back(std::make_unique<PageHandler>(dashboard_page()));
   server_->addHandler("/dashboard", handlers_.back().get());
+  handlers_.push_back(std::make_unique<PageHandler>(viewer_page()));
+  server_->addHandler("/view", handlers_.back().get());
+  viewers_ = std::make_unique<ViewerSocketHandler>(core, std::move(token));
+  server_->addWebSocketHandler("/view/ws", viewers_.get());
   handlers_.push_back(std::make_unique<EventsHandler>(hub_));
   server_->addHandler("/events", handlers_.back().get());
   handlers_.push_back(std::make_unique<ProbeHandler>(core, false));
@@ -100,6 +142,7 @@ HttpServer::HttpServer(const std::string& listen, service::ServiceCore& core, st
 
 HttpServer::~HttpServer() {
   hub_->close_all();  // the event streams return, so civetweb's workers can stop
+  viewers_->close_all();
   server_.reset();
 }
 

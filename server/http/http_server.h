@@ -3,7 +3,12 @@
 //   /dashboard  one self-contained page (uPlot embedded at build time; no network at view time)
 //   /events     server-sent events, one per rendered frame (DashboardHub: bounded per viewer)
 //   /healthz    200 while the process serves HTTP at all (liveness)
-//   /readyz     200 while the service takes new sessions, 503 once it drains (readiness)
+//   /readyz     200 while the service takes new sessions and its pipelines are warm, 503 while
+//               they compile or once it drains (readiness)
+//   /view       the live viewer: one page (viewer_page.cpp) whose socket /view/ws opens a session
+//               through the service core (viewer_stream.h)
+// With --tls-cert/--tls-key every page and socket is served over TLS; with --auth-token-file the
+// viewer's socket asks for the token; beyond loopback either is required, as for gRPC.
 #include <memory>
 #include <string>
 
@@ -12,6 +17,16 @@
 
 class CivetServer;
 class CivetHandler;
+
+namespace strata::http {
+class ViewerSocketHandler;
+
+// The certificate and key of --tls-cert/--tls-key, loaded into civetweb's TLS context by its
+// init_ssl callback (civetweb itself wants both in one file).
+struct TlsFiles {
+  std::string cert, key;
+};
+}  // namespace strata::http
 
 namespace strata::http {
 
@@ -23,15 +38,23 @@ class HttpServer {
   HttpServer(const HttpServer&) = delete;
   HttpServer& operator=(const HttpServer&) = delete;
   const std::string& address() const { return address_; }
+  bool tls() const { return tls_; }
+  // http://host:port or https://host:port
+  std::string base_url() const { return (tls_ ? "https://" : "http://") + address_; }
 
  private:
   std::shared_ptr<DashboardHub> hub_;
   std::unique_ptr<CivetServer> server_;
   std::vector<std::unique_ptr<CivetHandler>> handlers_;
+  std::unique_ptr<TlsFiles> tls_files_;
+  std::unique_ptr<ViewerSocketHandler> viewers_;
   std::string address_;
+  bool tls_ = false;
 };
 
 // The dashboard page: HTML with uPlot, its stylesheet and the page's script inlined.
 std::string dashboard_page();
+// The viewer page: HTML with uPlot, its stylesheet and the page's script inlined.
+std::string viewer_page();
 
 }  // namespace strata::http
