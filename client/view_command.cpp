@@ -120,7 +120,7 @@ Runner add_view_command(CLI::App& app) {
   auto a = std::make_shared<ViewArgs>();
   auto* cmd = app.add_subcommand("view", "print the URL of a daemon's live viewer (stratad serve --http) and open it in a browser");
   cmd->add_option("--server", a->server, "host:port of the daemon's --http address")->capture_default_str();
-  cmd->add_flag("--tls", a->tls, "the daemon serves --http over TLS (--tls-cert): an https:// URL");
+  cmd->add_flag("--tls", a->tls, "the page is reached through a TLS proxy in front of --http: an https:// URL");
   cmd->add_option("--scene", a->scene, "scene the page starts (default: carousel)");
   cmd->add_option("--method", a->method, "method the page starts (default: the daemon's)");
   cmd->add_option("--width", a->width, "width of the session the page starts (default 256)");

@@ -60,9 +60,8 @@ int run_serve(ServeArgs& a) {
             << (a.config.security.auth_token_file.empty() ? "" : "; bearer token") << ")" << std::endl;
   if (ops.metrics_enabled()) std::cout << "stratad: metrics on http://" << ops.metrics_address() << "/metrics" << std::endl;
   if (ops.http_enabled()) {
-    const std::string scheme = a.config.security.tls_cert.empty() ? "http://" : "https://";
-    std::cout << "stratad: dashboard on " << scheme << ops.http_address() << "/dashboard" << std::endl;
-    std::cout << "stratad: viewer on " << scheme << ops.http_address() << "/view" << std::endl;
+    std::cout << "stratad: dashboard on http://" << ops.http_address() << "/dashboard" << std::endl;
+    std::cout << "stratad: viewer on http://" << ops.http_address() << "/view" << std::endl;
   }
 
   int sig = 0;

@@ -4,7 +4,6 @@
 #include <vector>
 
 #include <CivetServer.h>
-#include <openssl/ssl.h>
 
 #include "http/viewer_socket.h"
 #include "service/tls_credentials.h"
@@ -81,21 +80,17 @@ class ProbeHandler final : public CivetHandler {
   const bool readiness_;
 };
 
-int init_tls(void* ssl_ctx, void* user_data) {
-  const auto* server = static_cast<const CivetServer*>(user_data);
-  const auto* files = static_cast<const TlsFiles*>(server->getUserContext());
-  auto* ctx = static_cast<SSL_CTX*>(ssl_ctx);
-  if (SSL_CTX_use_certificate_chain_file(ctx, files->cert.c_str()) != 1) return -1;
-  if (SSL_CTX_use_PrivateKey_file(ctx, files->key.c_str(), SSL_FILETYPE_PEM) != 1) return -1;
-  return SSL_CTX_check_private_key(ctx) == 1 ? 1 : -1;
-}
-
-// As service::check_exposure for --listen: beyond loopback only with TLS or a token.
+// As service::check_exposure does for --listen. The pages are served in the clear: Debian's civetweb
+// 1.15 cannot serve TLS with OpenSSL 3 (it looks up SSL_get_peer_certificate, which OpenSSL 3 no
+// longer exports, and calls the null pointer on the first connection), so --tls-cert does not make
+// --http safe; beyond loopback it needs the token (which the viewer's socket asks for), or a TLS
+// proxy in front and --insecure.
 void check_http_exposure(const std::string& listen, const service::SecurityConfig& s) {
-  if (s.insecure || service::is_loopback_listen(listen) || !s.tls_cert.empty() || !s.auth_token_file.empty()) return;
+  if (s.insecure || service::is_loopback_listen(listen) || !s.auth_token_file.empty()) return;
   throw std::invalid_argument("--http " + listen +
-                              " reaches beyond loopback without TLS or a token: give --tls-cert/--tls-key or --auth-token-file "
-                              "(the viewer's socket then asks for it), or --insecure to serve it in the clear anyway");
+                              " reaches beyond loopback without a token: give --auth-token-file (the viewer's socket then asks "
+                              "for it), or serve --http on loopback behind a TLS proxy, or --insecure to serve it in the clear anyway"
+                              " (--http is plain HTTP even with --tls-cert)");
 }
 
 }  // namespace
@@ -103,25 +98,17 @@ void check_http_exposure(const std::string& listen, const service::SecurityConfi
 HttpServer::HttpServer(const std::string& listen, service::ServiceCore& core, std::shared_ptr<DashboardHub> hub) : hub_(std::move(hub)) {
   const auto& security = core.config.security;
   check_http_exposure(listen, security);
-  tls_ = !security.tls_cert.empty();
-  tls_files_ = std::make_unique<TlsFiles>(TlsFiles{security.tls_cert.string(), security.tls_key.string()});
-  if (tls_) {  // readable PEM files, named by their flag, before civetweb's less telling error
-    service::read_pem("--tls-cert", tls_files_->cert);
-    service::read_pem("--tls-key", tls_files_->key);
-  }
   std::shared_ptr<const service::BearerToken> token;
   if (!security.auth_token_file.empty())
     token = std::make_shared<const service::BearerToken>(service::BearerToken::load(security.auth_token_file));
   // Enough workers for every dashboard event stream and viewer socket plus pages and probes.
   const size_t threads = DashboardHub::k_max_viewers + ViewerSocketHandler::k_max_viewers + 4;
-  const std::vector<std::string> options = {"listening_ports", listen + (tls_ ? "s" : ""), "num_threads", std::to_string(threads),
+  const std::vector<std::string> options = {"listening_ports", listen, "num_threads", std::to_string(threads),
                                             "websocket_timeout_ms", std::to_string(k_viewer_timeout_ms)};
-  CivetCallbacks callbacks;
-  if (tls_) callbacks.init_ssl = init_tls;
   try {
-    server_ = std::make_unique<CivetServer>(options, &callbacks, tls_files_.get());
+    server_ = std::make_unique<CivetServer>(options);
   } catch (const std::exception& e) {
-    throw std::runtime_error("--http = '" + listen + "': cannot listen" + (tls_ ? " with TLS" : "") + " (" + e.what() + ")");
+    throw std::runtime_error("--http = '" + listen + "': cannot listen (" + e.what() + ")");
   }
   handlers_.push_back(std::make_unique<PageHandler>(dashboard_page()));
   server_->addHandler("/dashboard", handlers_.back().get());

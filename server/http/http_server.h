@@ -7,8 +7,8 @@
 //               they compile or once it drains (readiness)
 //   /view       the live viewer: one page (viewer_page.cpp) whose socket /view/ws opens a session
 //               through the service core (viewer_stream.h)
-// With --tls-cert/--tls-key every page and socket is served over TLS; with --auth-token-file the
-// viewer's socket asks for the token; beyond loopback either is required, as for gRPC.
+// With --auth-token-file the viewer's socket asks for the token; beyond loopback the token is
+// required (the pages are plain HTTP: see check_http_exposure in http_server.cpp).
 #include <memory>
 #include <string>
 
@@ -20,13 +20,7 @@ class CivetHandler;
 
 namespace strata::http {
 class ViewerSocketHandler;
-
-// The certificate and key of --tls-cert/--tls-key, loaded into civetweb's TLS context by its
-// init_ssl callback (civetweb itself wants both in one file).
-struct TlsFiles {
-  std::string cert, key;
-};
-}  // namespace strata::http
+}
 
 namespace strata::http {
 
@@ -38,18 +32,13 @@ class HttpServer {
   HttpServer(const HttpServer&) = delete;
   HttpServer& operator=(const HttpServer&) = delete;
   const std::string& address() const { return address_; }
-  bool tls() const { return tls_; }
-  // http://host:port or https://host:port
-  std::string base_url() const { return (tls_ ? "https://" : "http://") + address_; }
 
  private:
   std::shared_ptr<DashboardHub> hub_;
   std::unique_ptr<CivetServer> server_;
   std::vector<std::unique_ptr<CivetHandler>> handlers_;
-  std::unique_ptr<TlsFiles> tls_files_;
   std::unique_ptr<ViewerSocketHandler> viewers_;
   std::string address_;
-  bool tls_ = false;
 };
 
 // The dashboard page: HTML with uPlot, its stylesheet and the page's script inlined.
