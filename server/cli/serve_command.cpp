@@ -10,10 +10,15 @@
 
 #include <pthread.h>
 
+#include <algorithm>
+#include <thread>
+
 #include "cli/commands.h"
 #include "gpu/context.h"
+#include "render/method_table.h"
 #include "ops/ops_endpoints.h"
 #include "service/server.h"
+#include "service/warm_up.h"
 
 namespace strata::cli {
 namespace {
@@ -26,6 +31,8 @@ struct ServeArgs {
   std::string device;
   bool validation = false;
   ops::OpsOptions ops;  // --metrics-listen, --http
+  std::string warm_up = render::k_default_method;
+  unsigned warm_up_threads = std::max(1u, std::thread::hardware_concurrency());
 };
 
 void write_port_file(const std::string& path, int port) {
@@ -49,6 +56,7 @@ int run_serve(ServeArgs& a) {
   a.config.idle_timeout = std::chrono::milliseconds(int64_t(a.idle_timeout_s * 1000.0));
   a.config.drain_timeout = std::chrono::milliseconds(int64_t(a.drain_timeout_s * 1000.0));
   a.config.validate();
+  const auto warm_methods = service::parse_warm_up(a.warm_up);
   ops::OpsEndpoints ops(a.ops);  // before the server: its interceptor sees every call; destroyed after it
   gpu::Context ctx({a.device, a.validation});
   service::Server server(ctx, a.config, ops.interceptors());
@@ -63,6 +71,10 @@ int run_serve(ServeArgs& a) {
     std::cout << "stratad: dashboard on http://" << ops.http_address() << "/dashboard" << std::endl;
     std::cout << "stratad: viewer on http://" << ops.http_address() << "/view" << std::endl;
   }
+
+  // The validation layer would report the warm-up's dispatches without resources bound.
+  service::WarmUp warm_up({a.device, a.validation}, a.config, a.validation ? std::vector<std::string>{} : warm_methods,
+                          a.warm_up_threads);
 
   int sig = 0;
   sigwait(&signals, &sig);
@@ -98,6 +110,10 @@ Runner add_serve_command(CLI::App& app) {
                   "directory of cached references (default: $XDG_CACHE_HOME/strata/references, else ~/.cache/strata/references)");
   cmd->add_option("--device", a->device, "Vulkan device name substring (default: $STRATA_DEVICE, else lavapipe)");
   cmd->add_flag("--validation", a->validation, "enable the Khronos validation layer");
+  cmd->add_option("--warm-up", a->warm_up,
+                  "methods whose pipelines are compiled at start, in parallel (comma-separated, all, or none); /readyz is 503 meanwhile")
+      ->capture_default_str();
+  cmd->add_option("--warm-up-threads", a->warm_up_threads, "devices compiling pipelines in parallel at start")->capture_default_str();
   cmd->add_option("--metrics-listen", a->ops.metrics_listen, "host:port of the Prometheus /metrics page (e.g. 127.0.0.1:9464; off when not given)");
   cmd->add_option("--http", a->ops.http_listen, "host:port of the live dashboard (/dashboard, /events), the viewer (/view) and probes (/healthz, /readyz); off when not given");
   // Scale-out and security (deploy/, service/auth_gate.h, service/tls_credentials.h).

@@ -5,6 +5,7 @@
 
 #include <CivetServer.h>
 
+#include "gpu/pipeline_warmup.h"
 #include "http/viewer_socket.h"
 #include "service/tls_credentials.h"
 
@@ -70,7 +71,11 @@ class ProbeHandler final : public CivetHandler {
  public:
   ProbeHandler(service::ServiceCore& core, bool readiness) : core_(core), readiness_(readiness) {}
   bool handleGet(CivetServer*, mg_connection* conn) override {
+    const auto warm = gpu::warmup_progress();
     if (readiness_ && core_.draining.load()) respond(conn, 503, "Service Unavailable", "text/plain", "draining\n");
+    else if (readiness_ && warm.running)
+      respond(conn, 503, "Service Unavailable", "text/plain",
+              "warming pipelines: " + std::to_string(warm.done) + " of " + std::to_string(warm.total) + " compiled\n");
     else respond(conn, 200, "OK", "text/plain", "ok\n");
     return true;
   }
