@@ -15,7 +15,6 @@
 
 #include "cli/commands.h"
 #include "gpu/context.h"
-#include "render/method_table.h"
 #include "ops/ops_endpoints.h"
 #include "service/server.h"
 #include "service/warm_up.h"
@@ -31,7 +30,9 @@ struct ServeArgs {
   std::string device;
   bool validation = false;
   ops::OpsOptions ops;  // --metrics-listen, --http
-  std::string warm_up = render::k_default_method;
+  // Off by default: on the 2-core machine measured (docs/BENCHMARKS.md) the zero-workgroup compile
+  // took more CPU than compiling at the first frame did.
+  std::string warm_up = "none";
   unsigned warm_up_threads = std::max(1u, std::thread::hardware_concurrency());
 };
 
@@ -60,6 +61,10 @@ int run_serve(ServeArgs& a) {
   ops::OpsEndpoints ops(a.ops);  // before the server: its interceptor sees every call; destroyed after it
   gpu::Context ctx({a.device, a.validation});
   service::Server server(ctx, a.config, ops.interceptors());
+  // Before the addresses are printed, so that /readyz answers 503 from its first request. The
+  // validation layer would report the warm-up's dispatches without resources bound: none then.
+  service::WarmUp warm_up({a.device, a.validation}, a.config, a.validation ? std::vector<std::string>{} : warm_methods,
+                          a.warm_up_threads);
   ops.attach(server);
   if (!a.port_file.empty()) write_port_file(a.port_file, server.port());
   std::cout << "stratad: serving strata.v1.RenderService on " << server.address() << " (device: " << ctx.device_name()
@@ -72,9 +77,6 @@ int run_serve(ServeArgs& a) {
     std::cout << "stratad: viewer on http://" << ops.http_address() << "/view" << std::endl;
   }
 
-  // The validation layer would report the warm-up's dispatches without resources bound.
-  service::WarmUp warm_up({a.device, a.validation}, a.config, a.validation ? std::vector<std::string>{} : warm_methods,
-                          a.warm_up_threads);
 
   int sig = 0;
   sigwait(&signals, &sig);
@@ -111,7 +113,7 @@ Runner add_serve_command(CLI::App& app) {
   cmd->add_option("--device", a->device, "Vulkan device name substring (default: $STRATA_DEVICE, else lavapipe)");
   cmd->add_flag("--validation", a->validation, "enable the Khronos validation layer");
   cmd->add_option("--warm-up", a->warm_up,
-                  "methods whose pipelines are compiled at start, in parallel (comma-separated, all, or none); /readyz is 503 meanwhile")
+                  "methods whose pipelines are compiled at start, in parallel (comma-separated, e.g. restir-gather, or all, or none); /readyz is 503 meanwhile")
       ->capture_default_str();
   cmd->add_option("--warm-up-threads", a->warm_up_threads, "devices compiling pipelines in parallel at start")->capture_default_str();
   cmd->add_option("--metrics-listen", a->ops.metrics_listen, "host:port of the Prometheus /metrics page (e.g. 127.0.0.1:9464; off when not given)");

@@ -19,6 +19,7 @@ struct WarmupState {
   std::condition_variable cv;
   std::set<std::string> keys;  // being warmed
   size_t done = 0, total = 0;
+  int planned = 0;             // warm-ups between warmup_begin and warmup_end
 };
 
 WarmupState& state() {
@@ -52,7 +53,17 @@ std::vector<PipelineInfo> record_pipelines(const std::function<void()>& build) {
 WarmupProgress warmup_progress() {
   auto& s = state();
   std::lock_guard lock(s.mu);
-  return {s.done, s.total, !s.keys.empty()};
+  return {s.done, s.total, s.planned > 0 || !s.keys.empty()};
+}
+
+void warmup_begin() {
+  std::lock_guard lock(state().mu);
+  ++state().planned;
+}
+
+void warmup_end() {
+  std::lock_guard lock(state().mu);
+  --state().planned;
 }
 
 double warm_pipelines(const ContextOptions& options, const std::vector<PipelineInfo>& pipelines, unsigned threads,

@@ -39,6 +39,9 @@ struct WarmupProgress {
   bool running = false;
 };
 WarmupProgress warmup_progress();
+// A warm-up about to record and compile (running from begin to end, as warmup_progress says).
+void warmup_begin();
+void warmup_end();
 
 // Compiles `pipelines` on min(threads, pipelines) devices chosen by `options`, in parallel, and
 // returns when every one is in Mesa's disk cache (the devices are destroyed, which flushes it).

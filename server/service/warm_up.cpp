@@ -57,7 +57,11 @@ std::vector<std::string> parse_warm_up(const std::string& list) {
 WarmUp::WarmUp(gpu::ContextOptions device, const ServiceConfig& config, std::vector<std::string> methods, unsigned threads)
     : device_(std::move(device)), methods_(std::move(methods)), threads_(std::max(1u, threads)) {
   if (methods_.empty()) return;
-  thread_ = std::thread([this, config] { run(config); });
+  gpu::warmup_begin();  // /readyz says so from now on
+  thread_ = std::thread([this, config] {
+    run(config);
+    gpu::warmup_end();
+  });
 }
 
 WarmUp::~WarmUp() {

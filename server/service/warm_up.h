@@ -1,5 +1,5 @@
 #pragma once
-// `stratad serve --warm-up`: the pipelines of the methods named are compiled at start, in parallel
+// `stratad serve --warm-up METHODS`: the pipelines of the methods named are compiled at start, in parallel
 // (gpu/pipeline_warmup.h), so that a session's first frame does not wait for lavapipe to compile
 // them one after another. Which pipelines: those a renderer of each method creates for the
 // built-in carousel at the default options. Progress shows on /readyz (503 while warming) and as

@@ -41,7 +41,7 @@ TEST(DashboardTest, ChromiumDrawsAndUpdatesTwoSessionsWithoutConsoleOutput) {
   TempDir dir;
   OpsDaemon daemon({"--http", "127.0.0.1:0"});
   EXPECT_EQ(http_get(daemon.http_address(), "/healthz").status, 200);
-  // Ready once the default method's pipelines are warm (stratad serve --warm-up).
+  // Ready once any pipeline warm-up is done (stratad serve --warm-up).
   EXPECT_TRUE(wait_until([&] { return http_get(daemon.http_address(), "/readyz").status == 200; }, 120s));
   EXPECT_EQ(http_get(daemon.http_address(), "/nothing-here").status, 404);
 
