@@ -198,10 +198,11 @@
     const n = new DataView(buffer).getUint32(0, true);
     const h = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 4, n)));
     const bitmap = await createImageBitmap(new Blob([new Uint8Array(buffer, 4 + n)], { type: 'image/jpeg' }));
-    if (canvas.width !== h.width || canvas.height !== h.height) {
+    if (canvas.width !== h.width || canvas.height !== h.height || !fitted) {
       canvas.width = h.width; canvas.height = h.height;
       canvas.classList.toggle('small', h.width < 512);
       fit();
+      fitted = true;
     }
     ctx2d.drawImage(bitmap, 0, 0);
     bitmap.close();
@@ -240,13 +241,13 @@
       `dropped ${h.dropped_total}  coalesced ${v.coalesced}` + (h.history_reset ? `\nreset: ${h.history_reset_reason}` : '') +
       `\n${passes}`;
   }
-  let chart = null;
+  let chart = null, fitted = false;
   const series = [[], [], []];
   function plot(h, now) {
     series[0].push(now / 1000); series[1].push(h.render_ms); series[2].push(v.latencies.length ? v.latencies[v.latencies.length - 1] : null);
     if (series[0].length > 300) series.forEach((s) => s.shift());
     if (!chart && typeof uPlot !== 'undefined') {
-      chart = new uPlot({ width: 270, height: 140, legend: { show: true }, scales: { x: { time: false } }, axes: [{ show: false }, { size: 40 }],
+      chart = new uPlot({ width: 270, height: 140, legend: { show: true }, scales: { x: { time: false } }, axes: [{ show: false }, { size: 50, values: (u, vals) => vals.map((x) => x.toFixed(0)) }],
                           series: [{}, { label: 'render ms', stroke: '#1e88e5' }, { label: 'latency ms', stroke: '#e53935' }] }, series, $('chart'));
     } else if (chart) {
       chart.setData(series);
