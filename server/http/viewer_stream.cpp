@@ -205,17 +205,21 @@ void ViewerStream::attach(const std::string& name, bool owned) {
   if (!s->attach(shared_from_this()))
     fail(grpc::StatusCode::ABORTED, "session '" + s->name() +
                                         "' already has a stream attached (another viewer tab or a gRPC stream); one stream per session at a time");
-  std::lock_guard lock(mu_);
-  session_ = s;
-  owned_ = owned;
-  state_ = s->scene().frame_state(0);
-  camera_ = state_.camera;
-  last_sequence_ = 0;
-  unacknowledged_.reset();
-  send_session_locked(s);
+  std::string message;
+  {
+    std::lock_guard lock(mu_);
+    session_ = s;
+    owned_ = owned;
+    state_ = s->scene().frame_state(0);
+    camera_ = state_.camera;
+    last_sequence_ = 0;
+    unacknowledged_.reset();
+    message = session_message_locked(s);
+  }
+  transport_->send_text(message);  // not under mu_: a slow reader must not hold up the frame scheduler
 }
 
-void ViewerStream::send_session_locked(const std::shared_ptr<service::Session>& s) {
+std::string ViewerStream::session_message_locked(const std::shared_ptr<service::Session>& s) {
   nlohmann::json instances = nlohmann::json::array();
   const auto& scene = s->scene();
   for (uint32_t i = 0; i < scene.instances.size(); ++i) {
@@ -226,12 +230,12 @@ void ViewerStream::send_session_locked(const std::shared_ptr<service::Session>& 
     j["lod"] = state_.lods[i];
     instances.push_back(std::move(j));
   }
-  transport_->send_text(nlohmann::json{{"type", "session"},
-                                       {"session", proto_json(s->describe(core_.config))},
-                                       {"owned", owned_},
-                                       {"camera", camera_json(state_.camera)},
-                                       {"instances", std::move(instances)}}
-                            .dump());
+  return nlohmann::json{{"type", "session"},
+                        {"session", proto_json(s->describe(core_.config))},
+                        {"owned", owned_},
+                        {"camera", camera_json(state_.camera)},
+                        {"instances", std::move(instances)}}
+      .dump();
 }
 
 void ViewerStream::input(const nlohmann::json& msg) {

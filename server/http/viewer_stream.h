@@ -90,7 +90,7 @@ class ViewerStream final : public service::AttachedStream,
   void input(const nlohmann::json& msg);
   void pick(const nlohmann::json& msg);
   void ack(const nlohmann::json& msg);
-  void send_session_locked(const std::shared_ptr<service::Session>& s);  // mu_ held
+  std::string session_message_locked(const std::shared_ptr<service::Session>& s);  // mu_ held
   void end_session();
   void sender();
   std::string frame_message(Frame& f);
