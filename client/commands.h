@@ -12,5 +12,6 @@ Runner add_stream_command(CLI::App& app);
 Runner add_health_command(CLI::App& app);
 Runner add_eval_command(CLI::App& app);
 Runner add_loadtest_command(CLI::App& app);
+Runner add_view_command(CLI::App& app);
 
 }  // namespace strata::client

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   add(&strata::client::add_health_command);
   add(&strata::client::add_eval_command);
   add(&strata::client::add_loadtest_command);
+  add(&strata::client::add_view_command);
   CLI11_PARSE(app, argc, argv);
   try {
     for (auto* sub : app.get_subcommands()) return runners.at(sub)();

@@ -34,6 +34,7 @@ PKGS=(
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libopenexr-dev libtinygltf-dev libmeshoptimizer-dev libglm-dev
   libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev libpng-dev
+  libjpeg-dev  # libjpeg-turbo: the viewer's JPEG frames (server/http/frame_jpeg.cpp)
   libssl-dev
   python3
   # deploy/ and its tests (proxies, runtime API, manifest lint, certificates, libFuzzer)

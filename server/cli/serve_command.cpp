@@ -10,10 +10,14 @@
 
 #include <pthread.h>
 
+#include <algorithm>
+#include <thread>
+
 #include "cli/commands.h"
 #include "gpu/context.h"
 #include "ops/ops_endpoints.h"
 #include "service/server.h"
+#include "service/warm_up.h"
 
 namespace strata::cli {
 namespace {
@@ -26,6 +30,10 @@ struct ServeArgs {
   std::string device;
   bool validation = false;
   ops::OpsOptions ops;  // --metrics-listen, --http
+  // Off by default: on the 2-core machine measured (docs/BENCHMARKS.md) the zero-workgroup compile
+  // took more CPU than compiling at the first frame did.
+  std::string warm_up = "none";
+  unsigned warm_up_threads = std::max(1u, std::thread::hardware_concurrency());
 };
 
 void write_port_file(const std::string& path, int port) {
@@ -49,9 +57,14 @@ int run_serve(ServeArgs& a) {
   a.config.idle_timeout = std::chrono::milliseconds(int64_t(a.idle_timeout_s * 1000.0));
   a.config.drain_timeout = std::chrono::milliseconds(int64_t(a.drain_timeout_s * 1000.0));
   a.config.validate();
+  const auto warm_methods = service::parse_warm_up(a.warm_up);
   ops::OpsEndpoints ops(a.ops);  // before the server: its interceptor sees every call; destroyed after it
   gpu::Context ctx({a.device, a.validation});
   service::Server server(ctx, a.config, ops.interceptors());
+  // Before the addresses are printed, so that /readyz answers 503 from its first request. The
+  // validation layer would report the warm-up's dispatches without resources bound: none then.
+  service::WarmUp warm_up({a.device, a.validation}, a.config, a.validation ? std::vector<std::string>{} : warm_methods,
+                          a.warm_up_threads);
   ops.attach(server);
   if (!a.port_file.empty()) write_port_file(a.port_file, server.port());
   std::cout << "stratad: serving strata.v1.RenderService on " << server.address() << " (device: " << ctx.device_name()
@@ -59,7 +72,11 @@ int run_serve(ServeArgs& a) {
             << (a.config.security.tls_client_ca.empty() ? "" : " with client certificates")
             << (a.config.security.auth_token_file.empty() ? "" : "; bearer token") << ")" << std::endl;
   if (ops.metrics_enabled()) std::cout << "stratad: metrics on http://" << ops.metrics_address() << "/metrics" << std::endl;
-  if (ops.http_enabled()) std::cout << "stratad: dashboard on http://" << ops.http_address() << "/dashboard" << std::endl;
+  if (ops.http_enabled()) {
+    std::cout << "stratad: dashboard on http://" << ops.http_address() << "/dashboard" << std::endl;
+    std::cout << "stratad: viewer on http://" << ops.http_address() << "/view" << std::endl;
+  }
+
 
   int sig = 0;
   sigwait(&signals, &sig);
@@ -95,8 +112,12 @@ Runner add_serve_command(CLI::App& app) {
                   "directory of cached references (default: $XDG_CACHE_HOME/strata/references, else ~/.cache/strata/references)");
   cmd->add_option("--device", a->device, "Vulkan device name substring (default: $STRATA_DEVICE, else lavapipe)");
   cmd->add_flag("--validation", a->validation, "enable the Khronos validation layer");
+  cmd->add_option("--warm-up", a->warm_up,
+                  "methods whose pipelines are compiled at start, in parallel (comma-separated, e.g. restir-gather, or all, or none); /readyz is 503 meanwhile")
+      ->capture_default_str();
+  cmd->add_option("--warm-up-threads", a->warm_up_threads, "devices compiling pipelines in parallel at start")->capture_default_str();
   cmd->add_option("--metrics-listen", a->ops.metrics_listen, "host:port of the Prometheus /metrics page (e.g. 127.0.0.1:9464; off when not given)");
-  cmd->add_option("--http", a->ops.http_listen, "host:port of the live dashboard (/dashboard, /events) and probes (/healthz, /readyz); off when not given");
+  cmd->add_option("--http", a->ops.http_listen, "host:port of the live dashboard (/dashboard, /events), the viewer (/view) and probes (/healthz, /readyz); off when not given");
   // Scale-out and security (deploy/, service/auth_gate.h, service/tls_credentials.h).
   auto& sec = c.security;
   cmd->add_option("--instance-id", c.instance_id, "sent as x-strata-instance on every response (default: hostname-pid)");

@@ -7,16 +7,18 @@
 #include <map>
 
 #include "embedded_shaders.h"
+#include "gpu/pipeline_warmup.h"
 
 namespace strata::gpu {
 
 ComputePipeline::ComputePipeline(const Context& ctx, std::string shader, std::span<const Binding> bindings,
                                  std::span<const SpecConstant> spec, uint32_t push_constant_bytes)
     : name_(std::move(shader)), bindings_(bindings.begin(), bindings.end()) {
-  std::string key = name_ + "|push " + std::to_string(push_constant_bytes) + "|bindings";
-  for (const auto& b : bindings_) key += " " + std::to_string(b.binding) + ":" + std::to_string(int(b.type));
-  key += "|spec";
-  for (const auto& s : spec) key += " " + std::to_string(s.id) + "=" + std::to_string(s.value);
+  const PipelineInfo info{name_, bindings_, {spec.begin(), spec.end()}, push_constant_bytes};
+  const std::string key = info.key();
+  // Recording what a renderer needs (gpu/pipeline_warmup.h): layouts only, no compile.
+  const bool record_only = detail::record_if_recording(info);
+  if (!record_only) detail::wait_if_warming(key);  // its code is being compiled: that compile is this one's
   objects_ = std::static_pointer_cast<Objects>(ctx.cached_pipeline(key, [&]() -> std::shared_ptr<void> {
     auto o = std::make_shared<Objects>();
     o->device = ctx.device();
@@ -35,6 +37,7 @@ ComputePipeline::ComputePipeline(const Context& ctx, std::string shader, std::sp
       pli.pPushConstantRanges = &pcr;
     }
     check(vkCreatePipelineLayout(ctx.device(), &pli, nullptr, &o->layout), "vkCreatePipelineLayout");
+    if (record_only) return o;
 
     auto words = shaders::spirv(name_);
     VkShaderModuleCreateInfo smci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};

@@ -5,10 +5,15 @@
 
 #include <CivetServer.h>
 
+#include "gpu/pipeline_warmup.h"
+#include "http/viewer_socket.h"
+#include "service/tls_credentials.h"
+
 namespace strata::http {
 namespace {
 
 constexpr auto k_keepalive = std::chrono::seconds(10);  // a comment line: notices viewers that left
+constexpr int k_viewer_timeout_ms = 60'000;  // a viewer socket silent this long is closed (the page pings every 15 s)
 
 bool send_all(mg_connection* conn, const std::string& text) { return mg_write(conn, text.data(), text.size()) == int(text.size()); }
 
@@ -21,13 +26,14 @@ void respond(mg_connection* conn, int status, const char* reason, const char* ty
 
 class PageHandler final : public CivetHandler {
  public:
+  explicit PageHandler(std::string page) : page_(std::move(page)) {}
   bool handleGet(CivetServer*, mg_connection* conn) override {
     respond(conn, 200, "OK", "text/html; charset=utf-8", page_);
     return true;
   }
 
  private:
-  const std::string page_ = dashboard_page();
+  const std::string page_;
 };
 
 class EventsHandler final : public CivetHandler {
@@ -65,7 +71,11 @@ class ProbeHandler final : public CivetHandler {
  public:
   ProbeHandler(service::ServiceCore& core, bool readiness) : core_(core), readiness_(readiness) {}
   bool handleGet(CivetServer*, mg_connection* conn) override {
+    const auto warm = gpu::warmup_progress();
     if (readiness_ && core_.draining.load()) respond(conn, 503, "Service Unavailable", "text/plain", "draining\n");
+    else if (readiness_ && warm.running)
+      respond(conn, 503, "Service Unavailable", "text/plain",
+              "warming pipelines: " + std::to_string(warm.done) + " of " + std::to_string(warm.total) + " compiled\n");
     else respond(conn, 200, "OK", "text/plain", "ok\n");
     return true;
   }
@@ -75,18 +85,42 @@ class ProbeHandler final : public CivetHandler {
   const bool readiness_;
 };
 
+// As service::check_exposure does for --listen. The pages are served in the clear: Debian's civetweb
+// 1.15 cannot serve TLS with OpenSSL 3 (it looks up SSL_get_peer_certificate, which OpenSSL 3 no
+// longer exports, and calls the null pointer on the first connection), so --tls-cert does not make
+// --http safe; beyond loopback it needs the token (which the viewer's socket asks for), or a TLS
+// proxy in front and --insecure.
+void check_http_exposure(const std::string& listen, const service::SecurityConfig& s) {
+  if (s.insecure || service::is_loopback_listen(listen) || !s.auth_token_file.empty()) return;
+  throw std::invalid_argument("--http " + listen +
+                              " reaches beyond loopback without a token: give --auth-token-file (the viewer's socket then asks "
+                              "for it), or serve --http on loopback behind a TLS proxy, or --insecure to serve it in the clear anyway"
+                              " (--http is plain HTTP even with --tls-cert)");
+}
+
 }  // namespace
 
 HttpServer::HttpServer(const std::string& listen, service::ServiceCore& core, std::shared_ptr<DashboardHub> hub) : hub_(std::move(hub)) {
-  // Enough workers for every viewer's event stream plus pages and probes.
-  const std::vector<std::string> options = {"listening_ports", listen, "num_threads", std::to_string(DashboardHub::k_max_viewers + 4)};
+  const auto& security = core.config.security;
+  check_http_exposure(listen, security);
+  std::shared_ptr<const service::BearerToken> token;
+  if (!security.auth_token_file.empty())
+    token = std::make_shared<const service::BearerToken>(service::BearerToken::load(security.auth_token_file));
+  // Enough workers for every dashboard event stream and viewer socket plus pages and probes.
+  const size_t threads = DashboardHub::k_max_viewers + ViewerSocketHandler::k_max_viewers + 4;
+  const std::vector<std::string> options = {"listening_ports", listen, "num_threads", std::to_string(threads),
+                                            "websocket_timeout_ms", std::to_string(k_viewer_timeout_ms)};
   try {
     server_ = std::make_unique<CivetServer>(options);
   } catch (const std::exception& e) {
     throw std::runtime_error("--http = '" + listen + "': cannot listen (" + e.what() + ")");
   }
-  handlers_.push_back(std::make_unique<PageHandler>());
+  handlers_.push_back(std::make_unique<PageHandler>(dashboard_page()));
   server_->addHandler("/dashboard", handlers_.back().get());
+  handlers_.push_back(std::make_unique<PageHandler>(viewer_page()));
+  server_->addHandler("/view", handlers_.back().get());
+  viewers_ = std::make_unique<ViewerSocketHandler>(core, std::move(token));
+  server_->addWebSocketHandler("/view/ws", viewers_.get());
   handlers_.push_back(std::make_unique<EventsHandler>(hub_));
   server_->addHandler("/events", handlers_.back().get());
   handlers_.push_back(std::make_unique<ProbeHandler>(core, false));
@@ -100,6 +134,7 @@ HttpServer::HttpServer(const std::string& listen, service::ServiceCore& core, st
 
 HttpServer::~HttpServer() {
   hub_->close_all();  // the event streams return, so civetweb's workers can stop
+  viewers_->close_all();
   server_.reset();
 }
 

@@ -154,7 +154,8 @@ nlohmann::json Chromium::call(const std::string& method, const nlohmann::json& p
 
 void Chromium::open(const std::string& url) {
   const auto target = call("Target.createTarget", {{"url", "about:blank"}}, false);
-  const auto attached = call("Target.attachToTarget", {{"targetId", target["targetId"]}, {"flatten", true}}, false);
+  target_ = target["targetId"].get<std::string>();
+  const auto attached = call("Target.attachToTarget", {{"targetId", target_}, {"flatten", true}}, false);
   session_ = attached["sessionId"];
   call("Runtime.enable", nlohmann::json::object(), true);
   call("Log.enable", nlohmann::json::object(), true);
@@ -166,6 +167,12 @@ nlohmann::json Chromium::evaluate(const std::string& expression) {
   const auto r = call("Runtime.evaluate", {{"expression", expression}, {"returnByValue", true}}, true);
   if (r.contains("exceptionDetails")) throw std::runtime_error("evaluate: " + r["exceptionDetails"].dump());
   return r["result"].value("value", nlohmann::json());
+}
+
+void Chromium::close_page() {
+  call("Target.closeTarget", {{"targetId", target_}}, false);
+  session_.clear();
+  target_.clear();
 }
 
 std::string Chromium::screenshot_png() {

@@ -29,6 +29,10 @@ class Chromium {
   nlohmann::json evaluate(const std::string& expression);
   // A PNG of the viewport.
   std::string screenshot_png();
+  // Any DevTools method on the page (Input.dispatchKeyEvent, Input.dispatchMouseEvent, ...).
+  nlohmann::json page_call(const std::string& method, const nlohmann::json& params) { return call(method, params, true); }
+  // Closes the page's tab, as a user closing it does (its sockets close).
+  void close_page();
   // Console messages, uncaught exceptions and error log entries of the page, as text.
   const std::vector<std::string>& page_messages() const { return messages_; }
   std::string log() const;
@@ -43,6 +47,7 @@ class Chromium {
   int to_browser_ = -1, from_browser_ = -1;
   std::string buffer_;
   std::string session_;
+  std::string target_;
   int next_id_ = 1;
   std::vector<std::string> messages_;
 };

@@ -41,7 +41,8 @@ TEST(DashboardTest, ChromiumDrawsAndUpdatesTwoSessionsWithoutConsoleOutput) {
   TempDir dir;
   OpsDaemon daemon({"--http", "127.0.0.1:0"});
   EXPECT_EQ(http_get(daemon.http_address(), "/healthz").status, 200);
-  EXPECT_EQ(http_get(daemon.http_address(), "/readyz").status, 200);
+  // Ready once any pipeline warm-up is done (stratad serve --warm-up).
+  EXPECT_TRUE(wait_until([&] { return http_get(daemon.http_address(), "/readyz").status == 200; }, 120s));
   EXPECT_EQ(http_get(daemon.http_address(), "/nothing-here").status, 404);
 
   auto stub = v1::RenderService::NewStub(loopback_channel(daemon.address()));
