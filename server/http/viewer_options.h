@@ -1,27 +1,14 @@
 #pragma once
-// The render options the viewer's panel offers: each a field of strata.v1.RenderOptions by its
-// proto name, with the control's range. This is the one place the viewer names options; the page
-// builds its panel from this list (sent in the hello reply) and sets the fields by these names, and
-// the service checks the values as it checks any FrameInput's.
-#include <string>
-#include <vector>
-
+// The render options the viewer's panel offers. Which rows of the option table (options/option_table.h)
+// the panel shows, and its labels, are the viewer's; everything else (kind, range, the methods an
+// option applies to) comes from the table, so the panel cannot disagree with the service, which
+// checks the values as it checks any FrameInput's.
 #include <nlohmann/json.hpp>
 
 namespace strata::http {
 
-struct ViewerOption {
-  const char* field;   // RenderOptions field (proto name)
-  const char* label;
-  double min, max, step;  // for numbers; a bool field ignores them
-  bool restir_only;    // only the restir-* methods use it
-};
-
-const std::vector<ViewerOption>& viewer_options();
-
-// The list as the page reads it: [{field, label, kind ("uint", "float" or "bool"), min, max, step,
-// restir_only}], kinds taken from the proto's descriptor. Throws std::logic_error naming a field that
-// RenderOptions does not have.
+// [{field, label, kind ("uint", "float" or "bool"), min, max, step, restir_only}] as the page reads it
+// (sent in the hello reply). Throws std::logic_error naming a field that the option table lacks.
 nlohmann::json viewer_options_json();
 
 }  // namespace strata::http
