@@ -16,6 +16,7 @@
 #include "render/method_table.h"
 #include "render/renderer.h"
 #include "scene/scene_io.h"
+#include "scene/unrendered.h"
 
 namespace strata::cli {
 namespace {
@@ -45,6 +46,8 @@ int run_render(const RenderArgs& a) {
   if (a.domain_map && !render::method_spec(a.settings.method).layers)
     throw std::invalid_argument("--domain-map: method " + a.settings.method + " keeps no pixel layers (restir-multilayer does)");
   scene::Scene scene = scene::load_scene(a.scene);
+  const std::vector<std::string> unrendered = scene::unrendered_features(scene);
+  for (const std::string& feature : unrendered) std::fprintf(stderr, "not rendered: %s\n", feature.c_str());
   gpu::Context ctx({a.device, a.validation});
   render::Renderer renderer(ctx, scene, a.settings);
   fs::create_directories(a.out);
@@ -53,6 +56,7 @@ int run_render(const RenderArgs& a) {
   doc["scene"] = scene.name;
   doc["method"] = a.settings.method;
   doc["device"] = ctx.device_name();
+  doc["ignored"] = unrendered;
   doc["settings"] = {{"width", a.settings.width}, {"height", a.settings.height}, {"spp", a.settings.spp},
                      {"max_depth", a.settings.max_depth}, {"seed", a.settings.seed}, {"accumulate", a.accumulate}};
   doc["frames"] = nlohmann::json::array();

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <limits>
 
+#include "scene/gltf_extensions.h"
+
 namespace strata::scene::gltf {
 namespace {
 
@@ -193,6 +195,7 @@ tinygltf::Model parse_model(std::span<const uint8_t> bytes, const std::string& l
       fail(label, "is not a glTF file (neither a .glb header nor a JSON object)");
   }
   check_json_depth(json, label);
+  refuse_required_extensions(json, label);
 
   FileGuard guard;
   guard.budget = budget;

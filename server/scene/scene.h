@@ -130,6 +130,10 @@ struct Scene {
   Camera camera;
   Environment environment;
   Animation animation;
+  // What the source file holds that the scene model leaves out, one phrase each
+  // ("KHR_materials_clearcoat on 3 materials (rendered without the coat)"); empty for built-in
+  // scenes. scene/unrendered.h adds what the model keeps but the renderer does not draw.
+  std::vector<std::string> ignored_features;
 
   // The scene's state at frame `frame` of its default animation.
   FrameState frame_state(uint32_t frame) const;

@@ -146,6 +146,8 @@ constexpr size_t kMaxInstances = (size_t(1) << 20) - 1;
 void Scene::validate() const {
   for (size_t m = 0; m < materials.size(); ++m) validate_material(at("materials", m), materials[m]);
   for (size_t m = 0; m < meshes.size(); ++m) {
+    if (meshes[m].primitives.empty())
+      fail(at("meshes", m) + ".primitives", "is empty (a mesh needs at least one primitive)");
     // A path sample stores the primitive in 12 bits (shaders/restir/reservoir.h).
     if (meshes[m].primitives.size() > kMaxPrimitivesPerMesh)
       fail(at("meshes", m) + ".primitives",
