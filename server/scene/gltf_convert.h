@@ -11,6 +11,10 @@ namespace strata::scene::gltf {
 
 // Every glTF material, in order (gltf_mesh.cpp).
 void convert_materials(const Source& source, Scene& scene);
+// Alpha modes and textures of every material (gltf_textures.cpp): decodes the images the
+// materials use into scene.textures, with their mip chains, within LoadLimits' texture limits.
+// Runs after convert_materials.
+void convert_material_textures(const Source& source, Scene& scene);
 // Every glTF mesh, in order, so glTF mesh i is Scene mesh i. Primitives without a material get a
 // default material appended to scene.materials (gltf_mesh.cpp).
 void convert_meshes(const Source& source, Scene& scene);

@@ -15,9 +15,10 @@ namespace strata::scene::gltf {
 namespace {
 
 // Extensions whose content reaches the scene model.
-constexpr std::array<std::string_view, 3> kRendered = {
+constexpr std::array<std::string_view, 4> kRendered = {
     "KHR_materials_emissive_strength",  // Material::emission
     "KHR_materials_specular",           // specularFactor only; the rest is listed as ignored
+    "KHR_texture_transform",            // TextureRef::transform
     "MSFT_lod",                         // Instance::lod_meshes
 };
 

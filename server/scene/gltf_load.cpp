@@ -46,6 +46,7 @@ Scene convert(const tinygltf::Model& model, const std::string& label,
   const gltf::Source source{model, label, limits};
   Scene scene;
   gltf::convert_materials(source, scene);
+  gltf::convert_material_textures(source, scene);
   gltf::convert_meshes(source, scene);
   const gltf::NodeTree tree = gltf::convert_nodes(source, scene);
   require_geometry(source, tree, scene);

@@ -89,6 +89,48 @@ void repair_normals(Primitive& out) {
   }
 }
 
+// TEXCOORD_1 where a texture of the material reads set 1, TANGENT where the material has a normal
+// texture (tangents are unit length in xyz, w = +-1); neither is kept otherwise.
+void read_texture_attributes(const Source& s, const tinygltf::Primitive& p, const std::string& field,
+                             const Material& material, size_t vertices, Primitive& out) {
+  bool set1 = false;
+  for (const TextureRef* ref : {&material.base_color_texture, &material.metallic_roughness_texture,
+                                &material.normal_texture, &material.emissive_texture}) {
+    set1 = set1 || (ref->texture >= 0 && ref->tex_coord == 1);
+  }
+  auto checked = [&](const char* name) -> int {
+    const auto it = p.attributes.find(name);
+    if (it == p.attributes.end()) return -1;
+    const std::string attr_field = field + ".attributes." + name;
+    const size_t count = accessor_count(s, it->second, attr_field);
+    if (count != vertices) {
+      s.fail(attr_field, "has " + std::to_string(count) + " elements, POSITION has " + std::to_string(vertices));
+    }
+    return it->second;
+  };
+  if (set1) {
+    const int accessor = checked("TEXCOORD_1");
+    if (accessor < 0) {
+      s.fail(field + ".attributes.TEXCOORD_1",
+             "is missing (materials[" + std::to_string(out.material) + "] reads texture coordinate set 1)");
+    }
+    out.uvs1 = read_vec2(s, accessor, Components::kFloatOrNormalizedUnsigned, field + ".attributes.TEXCOORD_1");
+  }
+  if (material.normal_texture.texture >= 0) {
+    const int accessor = checked("TANGENT");
+    if (accessor < 0) return;
+    const std::string attr_field = field + ".attributes.TANGENT";
+    const std::vector<float> v = read_floats(s, accessor, 4, Components::kFloatOnly, attr_field);
+    out.tangents.resize(vertices);
+    for (size_t i = 0; i < vertices; ++i) {
+      const glm::vec3 t(v[4 * i], v[4 * i + 1], v[4 * i + 2]);
+      const float length = glm::length(t);
+      if (!(length > 1e-12f)) s.fail(at(attr_field, i), "is not a direction (zero length)");
+      out.tangents[i] = glm::vec4(t / length, v[4 * i + 3] < 0.0f ? -1.0f : 1.0f);
+    }
+  }
+}
+
 Primitive convert_primitive(const Source& s, const tinygltf::Primitive& p, const std::string& field,
                             Scene& scene, MeshState& state) {
   const bool list = p.mode == TINYGLTF_MODE_TRIANGLES;
@@ -155,6 +197,7 @@ Primitive convert_primitive(const Source& s, const tinygltf::Primitive& p, const
       out.uvs = read_vec2(s, it->second, Components::kFloatOrNormalizedUnsigned, attr_field);
     }
   }
+  read_texture_attributes(s, p, field, scene.materials[out.material], vertices, out);
   if (out.normals.empty()) {
     out.normals = area_weighted_normals(out.positions, out.indices);
   } else {

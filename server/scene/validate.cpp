@@ -48,6 +48,30 @@ void check_range(const std::string& field, float value, float lo, float hi) {
   }
 }
 
+void validate_texture_ref(const std::string& field, const TextureRef& ref, size_t texture_count) {
+  if (ref.texture < 0) return;
+  check_index(field + ".texture", uint64_t(ref.texture), texture_count, "textures");
+  if (ref.tex_coord > 1) fail(field + ".tex_coord", "= " + std::to_string(ref.tex_coord) + " is not 0 or 1");
+  check_finite(field + ".transform.offset", ref.transform.offset);
+  check_finite(field + ".transform.rotation", ref.transform.rotation);
+  check_finite(field + ".transform.scale", ref.transform.scale);
+}
+
+void validate_textures(const TextureSet& t) {
+  for (size_t i = 0; i < t.levels.size(); ++i) {
+    const MipLevel& l = t.levels[i];
+    if (l.width == 0 || l.height == 0 || uint64_t(l.offset) + uint64_t(l.width) * l.height > t.texels.size())
+      fail(at("textures.levels", i), "lies outside textures.texels (" + std::to_string(t.texels.size()) + " texels)");
+  }
+  for (size_t i = 0; i < t.images.size(); ++i) {
+    const TextureImage& image = t.images[i];
+    if (image.level_count == 0 || uint64_t(image.first_level) + image.level_count > t.levels.size())
+      fail(at("textures.images", i), "has levels outside textures.levels");
+  }
+  for (size_t i = 0; i < t.textures.size(); ++i)
+    check_index(at("textures.textures", i) + ".image", t.textures[i].image, t.images.size(), "images");
+}
+
 void validate_material(const std::string& field, const Material& m) {
   for (int c = 0; c < 3; ++c) check_range(field + ".base_color", m.base_color[c], 0.0f, 1.0f);
   check_range(field + ".metallic", m.metallic, 0.0f, 1.0f);
@@ -55,9 +79,14 @@ void validate_material(const std::string& field, const Material& m) {
   check_finite(field + ".emission", m.emission);
   if (glm::any(glm::lessThan(m.emission, glm::vec3(0.0f))))
     fail(field + ".emission", "is negative");
+  check_range(field + ".alpha", m.alpha, 0.0f, 1.0f);
+  check_finite(field + ".alpha_cutoff", m.alpha_cutoff);
+  if (m.alpha_cutoff < 0.0f) fail(field + ".alpha_cutoff", "is negative");
+  check_finite(field + ".normal_scale", m.normal_scale);
 }
 
-void validate_primitive(const std::string& field, const Primitive& p, size_t material_count) {
+void validate_primitive(const std::string& field, const Primitive& p, const std::vector<Material>& materials) {
+  const size_t material_count = materials.size();
   const size_t n = p.positions.size();
   if (p.normals.size() != n) {
     fail(field + ".normals", "has " + std::to_string(p.normals.size()) +
@@ -72,6 +101,18 @@ void validate_primitive(const std::string& field, const Primitive& p, size_t mat
          "has " + std::to_string(p.indices.size()) + " entries, not a multiple of 3");
   }
   check_index(field + ".material", p.material, material_count, "materials");
+  if (!p.uvs1.empty() && p.uvs1.size() != n)
+    fail(field + ".uvs1", "has " + std::to_string(p.uvs1.size()) + " entries, positions has " + std::to_string(n));
+  if (!p.tangents.empty() && p.tangents.size() != n)
+    fail(field + ".tangents", "has " + std::to_string(p.tangents.size()) + " entries, positions has " + std::to_string(n));
+  const Material& m = materials[p.material];
+  for (const TextureRef* ref : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
+                                &m.emissive_texture}) {
+    if (ref->texture >= 0 && ref->tex_coord == 1 && p.uvs1.size() != n)
+      fail(field + ".uvs1", "is missing: materials[" + std::to_string(p.material) + "] reads texture coordinate set 1");
+  }
+  for (size_t i = 0; i < p.uvs1.size(); ++i) check_finite(at(field + ".uvs1", i), p.uvs1[i]);
+  for (size_t i = 0; i < p.tangents.size(); ++i) check_finite(at(field + ".tangents", i), p.tangents[i]);
   for (size_t i = 0; i < p.indices.size(); ++i)
     check_index(at(field + ".indices", i), p.indices[i], n, "vertices");
   for (size_t i = 0; i < n; ++i) {
@@ -144,7 +185,16 @@ constexpr size_t kMaxInstances = (size_t(1) << 20) - 1;
 }  // namespace
 
 void Scene::validate() const {
-  for (size_t m = 0; m < materials.size(); ++m) validate_material(at("materials", m), materials[m]);
+  validate_textures(textures);
+  for (size_t m = 0; m < materials.size(); ++m) {
+    validate_material(at("materials", m), materials[m]);
+    const Material& mat = materials[m];
+    validate_texture_ref(at("materials", m) + ".base_color_texture", mat.base_color_texture, textures.textures.size());
+    validate_texture_ref(at("materials", m) + ".metallic_roughness_texture", mat.metallic_roughness_texture,
+                         textures.textures.size());
+    validate_texture_ref(at("materials", m) + ".normal_texture", mat.normal_texture, textures.textures.size());
+    validate_texture_ref(at("materials", m) + ".emissive_texture", mat.emissive_texture, textures.textures.size());
+  }
   for (size_t m = 0; m < meshes.size(); ++m) {
     if (meshes[m].primitives.empty())
       fail(at("meshes", m) + ".primitives", "is empty (a mesh needs at least one primitive)");
@@ -154,8 +204,7 @@ void Scene::validate() const {
            "has " + std::to_string(meshes[m].primitives.size()) + " primitives; the limit is " +
                std::to_string(kMaxPrimitivesPerMesh) + " per mesh");
     for (size_t p = 0; p < meshes[m].primitives.size(); ++p) {
-      validate_primitive(at(at("meshes", m) + ".primitives", p), meshes[m].primitives[p],
-                         materials.size());
+      validate_primitive(at(at("meshes", m) + ".primitives", p), meshes[m].primitives[p], materials);
     }
   }
   // Instance ids live in 20 bits of a path sample, all ones reserved (shaders/restir/reservoir.h).

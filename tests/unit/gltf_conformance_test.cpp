@@ -151,5 +151,20 @@ TEST_F(GltfConformance, EveryFileLoadsOrIsRefusedByName) {
   }
 }
 
+TEST_F(GltfConformance, BoxTexturedLoadsWithItsTextureDecoded) {
+  for (const char* file : {"BoxTextured-glTF/BoxTextured.gltf", "BoxTextured-glTF-Binary/BoxTextured.glb",
+                           "BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
+    SCOPED_TRACE(file);
+    const Scene s = load_gltf_file(kCorpus / file);
+    ASSERT_EQ(s.textures.images.size(), 1u);
+    const MipLevel& top = s.textures.levels[s.textures.images[0].first_level];
+    EXPECT_GT(top.width, 64u);
+    const auto first = s.textures.texels.begin() + top.offset;
+    const auto end = first + std::ptrdiff_t(top.width) * top.height;
+    EXPECT_NE(std::find_if(first, end, [&](uint32_t t) { return t != *first; }), end) << "a uniform texture";
+    EXPECT_GE(s.materials[0].base_color_texture.texture, 0);
+  }
+}
+
 }  // namespace
 }  // namespace strata::scene
