@@ -15,7 +15,8 @@ namespace strata::scene::gltf {
 namespace {
 
 // Extensions whose content reaches the scene model.
-constexpr std::array<std::string_view, 4> kRendered = {
+constexpr std::array<std::string_view, 5> kRendered = {
+    "KHR_lights_punctual",              // Scene::lights
     "KHR_materials_emissive_strength",  // Material::emission
     "KHR_materials_specular",           // specularFactor only; the rest is listed as ignored
     "KHR_texture_transform",            // TextureRef::transform

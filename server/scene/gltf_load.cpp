@@ -48,7 +48,8 @@ Scene convert(const tinygltf::Model& model, const std::string& label,
   gltf::convert_materials(source, scene);
   gltf::convert_material_textures(source, scene);
   gltf::convert_meshes(source, scene);
-  const gltf::NodeTree tree = gltf::convert_nodes(source, scene);
+  gltf::NodeTree tree = gltf::convert_nodes(source, scene);
+  gltf::convert_lights(source, tree, scene);
   require_geometry(source, tree, scene);
   gltf::convert_animations(source, tree, scene);
   gltf::list_ignored_features(source, scene);

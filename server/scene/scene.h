@@ -168,6 +168,26 @@ struct Camera {
   bool operator==(const Camera&) const = default;
 };
 
+// KHR_lights_punctual. Units as for emission: a point or spot light's intensity (candela) is read
+// in the renderer's radiance units per steradian, so a light of intensity I at distance d gives
+// irradiance I / d^2 on a surface facing it; a directional light's intensity (lux) is the
+// irradiance on a surface facing it. A light shines down its local -Z (spot, directional); a spot's
+// falloff is the extension's: full inside inner_cone, zero outside outer_cone, smooth between.
+enum class LightType : uint8_t { kDirectional = 0, kPoint = 1, kSpot = 2 };
+struct Light {
+  std::string name;
+  LightType type = LightType::kPoint;
+  glm::vec3 color{1.0f};  // linear
+  float intensity = 1.0f;
+  float range = 0.0f;  // 0: unlimited; else the light fades to zero at this distance
+  float inner_cone = 0.0f;             // radians, spot only; 0 <= inner_cone < outer_cone
+  float outer_cone = 0.78539816339f;   // radians, spot only; <= pi / 2
+  // Light to world at rest: the world transform of the node the light is attached to. The light
+  // follows its node: Animation::light_tracks carries the node's animation.
+  glm::mat4 transform{1.0f};
+  bool operator==(const Light&) const = default;
+};
+
 // Constant environment radiance seen by rays that escape (and sampled by NEE when non-zero).
 struct Environment {
   glm::vec3 radiance{0.0f};
@@ -194,6 +214,11 @@ struct InstanceTrack {  // replaces the instance's transform while it has keys
   std::vector<TransformKey> keys;
   bool operator==(const InstanceTrack&) const = default;
 };
+struct LightTrack {  // replaces the light's transform while it has keys
+  uint32_t light = 0;
+  std::vector<TransformKey> keys;
+  bool operator==(const LightTrack&) const = default;
+};
 struct LodKey {  // from `time` on, `instance` uses `level`
   float time = 0.0f;
   uint32_t instance = 0;
@@ -205,6 +230,7 @@ struct Animation {
   std::vector<CameraKey> camera;  // empty: camera stays still
   std::vector<InstanceTrack> tracks;
   std::vector<LodKey> lod_schedule;  // sorted by time
+  std::vector<LightTrack> light_tracks;
   bool operator==(const Animation&) const = default;
 };
 
@@ -213,6 +239,7 @@ struct FrameState {
   Camera camera;                      // at the frame's instant, where the shutter closes
   std::vector<glm::mat4> transforms;  // per instance, object to world
   std::vector<uint32_t> lods;         // per instance, level in use
+  std::vector<glm::mat4> lights;      // per light, light to world
   // Where the shutter opened (scene/shutter.h): over the shutter the camera moves from it to
   // `camera` (RS-supp 3.3.1). None: the frame is an instant (shutter closed, or nothing moved).
   std::optional<Camera> camera_open;
@@ -225,6 +252,7 @@ struct Scene {
   TextureSet textures;
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;
+  std::vector<Light> lights;
   Camera camera;
   Environment environment;
   Animation animation;

@@ -124,6 +124,22 @@ void validate_primitive(const std::string& field, const Primitive& p, const std:
   }
 }
 
+void validate_light(const std::string& field, const Light& l) {
+  check_finite(field + ".color", l.color);
+  if (glm::any(glm::lessThan(l.color, glm::vec3(0.0f)))) fail(field + ".color", "is negative");
+  check_finite(field + ".intensity", l.intensity);
+  if (l.intensity < 0.0f) fail(field + ".intensity", "is negative");
+  check_finite(field + ".range", l.range);
+  if (l.range < 0.0f) fail(field + ".range", "is negative");
+  check_finite(field + ".transform", l.transform);
+  if (l.type == LightType::kSpot) {
+    check_range(field + ".outer_cone", l.outer_cone, 0.0f, 1.5707964f);
+    check_range(field + ".inner_cone", l.inner_cone, 0.0f, 1.5707964f);
+    if (!(l.inner_cone < l.outer_cone))
+      fail(field + ".inner_cone", "= " + std::to_string(l.inner_cone) + " is not below outer_cone");
+  }
+}
+
 void validate_camera(const Camera& c) {
   check_finite("camera.position", c.position);
   check_finite("camera.orientation", c.orientation);
@@ -167,6 +183,16 @@ void validate_animation(const Scene& s) {
       check_finite(at(field + ".keys", k) + ".translation", track.keys[k].translation);
       check_finite(at(field + ".keys", k) + ".rotation", track.keys[k].rotation);
       check_finite(at(field + ".keys", k) + ".scale", track.keys[k].scale);
+    }
+  }
+  for (size_t t = 0; t < a.light_tracks.size(); ++t) {
+    const std::string field = at("animation.light_tracks", t);
+    check_index(field + ".light", a.light_tracks[t].light, s.lights.size(), "lights");
+    check_sorted(field + ".keys", a.light_tracks[t].keys);
+    for (size_t k = 0; k < a.light_tracks[t].keys.size(); ++k) {
+      check_finite(at(field + ".keys", k) + ".translation", a.light_tracks[t].keys[k].translation);
+      check_finite(at(field + ".keys", k) + ".rotation", a.light_tracks[t].keys[k].rotation);
+      check_finite(at(field + ".keys", k) + ".scale", a.light_tracks[t].keys[k].scale);
     }
   }
   check_sorted("animation.lod_schedule", a.lod_schedule);
@@ -222,6 +248,7 @@ void Scene::validate() const {
     check_index(field + ".lod", instance.lod, instance.lod_meshes.size(), "LoD levels");
     check_finite(field + ".transform", instance.transform);
   }
+  for (size_t l = 0; l < lights.size(); ++l) validate_light(at("lights", l), lights[l]);
   validate_camera(camera);
   check_finite("environment.radiance", environment.radiance);
   if (glm::any(glm::lessThan(environment.radiance, glm::vec3(0.0f))))
