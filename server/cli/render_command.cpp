@@ -15,6 +15,7 @@
 #include "image/image.h"
 #include "render/method_table.h"
 #include "render/renderer.h"
+#include "scene/environment_map.h"
 #include "scene/scene_io.h"
 #include "scene/unrendered.h"
 
@@ -31,6 +32,8 @@ struct RenderArgs {
   float exposure = 0.0f;
   bool validation = false;
   bool domain_map = false;
+  std::string environment;  // equirectangular .hdr / .exr; empty: the scene's own environment
+  scene::EnvironmentOptions environment_options;
   render::RenderSettings settings;
 };
 
@@ -46,6 +49,7 @@ int run_render(const RenderArgs& a) {
   if (a.domain_map && !render::method_spec(a.settings.method).layers)
     throw std::invalid_argument("--domain-map: method " + a.settings.method + " keeps no pixel layers (restir-multilayer does)");
   scene::Scene scene = scene::load_scene(a.scene);
+  if (!a.environment.empty()) scene.environment.map = scene::load_environment_map(a.environment, a.environment_options);
   const std::vector<std::string> unrendered = scene::unrendered_features(scene);
   for (const std::string& feature : unrendered) std::fprintf(stderr, "not rendered: %s\n", feature.c_str());
   gpu::Context ctx({a.device, a.validation});
@@ -172,6 +176,12 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_flag("--domain-map", a->domain_map,
                 "restir-multilayer: also write each frame's domain map, frame_NNNN_domains.png (red: 32 x active domains, "
                 "green: disoccluded, blue: covered)");
+  cmd->add_option("--environment", a->environment, "equirectangular HDR environment map (Radiance .hdr or OpenEXR)");
+  cmd->add_option("--environment-intensity", a->environment_options.intensity, "scales the environment map's radiance")
+      ->capture_default_str();
+  cmd->add_option("--environment-rotation", a->environment_options.rotation_degrees,
+                  "turns the environment map about +Y, degrees counter-clockwise seen from above")
+      ->capture_default_str();
   return [a] { return run_render(*a); };
 }
 

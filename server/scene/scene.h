@@ -188,9 +188,30 @@ struct Light {
   bool operator==(const Light&) const = default;
 };
 
-// Constant environment radiance seen by rays that escape (and sampled by NEE when non-zero).
+// An equirectangular HDR image as the environment (scene/environment_map.h for the mapping and
+// its importance sampling). Row 0 looks straight up (+Y); the image's centre column looks down -Z,
+// where a default camera looks, and u grows towards +X from there.
+struct EnvironmentMap {
+  std::string name;  // the file it came from
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<glm::vec3> radiance;  // linear, row-major, top row first, before `intensity`
+  float intensity = 1.0f;           // scales radiance
+  float rotation = 0.0f;            // radians about +Y, counter-clockwise seen from above
+  // Importance sampling by luminance x solid angle: texel weights w = Y(radiance) sin(theta) at
+  // the texel's centre; per row the CDF over its columns (width + 1 entries, 0 to 1), over the
+  // rows the CDF of their sums (height + 1 entries); weight_sum = sum of w (0: a black map).
+  std::vector<float> conditional_cdf;
+  std::vector<float> marginal_cdf;
+  double weight_sum = 0.0;
+  bool operator==(const EnvironmentMap&) const = default;
+};
+
+// Constant environment radiance seen by rays that escape (and sampled by NEE when non-zero),
+// or an environment map.
 struct Environment {
   glm::vec3 radiance{0.0f};
+  std::optional<EnvironmentMap> map;
   bool operator==(const Environment&) const = default;
 };
 

@@ -37,6 +37,10 @@ std::vector<std::string> unrendered_features(const Scene& scene) {
     out.push_back("KHR_lights_punctual: " + gltf::count_of(scene.lights.size(), "light") +
                   " (loaded, not yet rendered)");
   }
+  if (scene.environment.map) {
+    out.push_back("environment map '" + scene.environment.map->name +
+                  "' (loaded, not yet rendered: escaping rays see the constant environment colour)");
+  }
   return out;
 }
 

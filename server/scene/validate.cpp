@@ -253,6 +253,16 @@ void Scene::validate() const {
   check_finite("environment.radiance", environment.radiance);
   if (glm::any(glm::lessThan(environment.radiance, glm::vec3(0.0f))))
     fail("environment.radiance", "is negative");
+  if (environment.map) {
+    const EnvironmentMap& m = *environment.map;
+    if (m.width == 0 || m.height == 0 || m.radiance.size() != size_t(m.width) * m.height)
+      fail("environment.map.radiance", "does not hold width x height texels");
+    if (m.conditional_cdf.size() != size_t(m.height) * (m.width + 1) || m.marginal_cdf.size() != size_t(m.height) + 1)
+      fail("environment.map", "has sampling tables of the wrong size");
+    check_finite("environment.map.intensity", m.intensity);
+    if (m.intensity < 0.0f) fail("environment.map.intensity", "is negative");
+    check_finite("environment.map.rotation", m.rotation);
+  }
   validate_animation(*this);
 }
 
