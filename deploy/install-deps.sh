@@ -41,6 +41,7 @@ PKGS=(
   haproxy nginx-light socat yamllint openssl clang libclang-rt-dev
   chromium
   prometheus-cpp-dev libcivetweb-dev prometheus
+  assimp-testmodels libstb-dev  # glTF 2.0 test corpus (tests/unit/gltf_conformance_test.cpp); stb_image decodes textures and .hdr
 )
 # npm runs at build time (uPlot for the eval report and the dashboard, cmake/uplot); Debian's nodejs and npm
 # only when no npm is on PATH already (a newer Node may be installed some other way).

@@ -16,7 +16,9 @@
 #include "options/option_flags.h"
 #include "render/method_table.h"
 #include "render/renderer.h"
+#include "scene/environment_map.h"
 #include "scene/scene_io.h"
+#include "scene/unrendered.h"
 
 namespace strata::cli {
 namespace {
@@ -31,6 +33,8 @@ struct RenderArgs {
   float exposure = 0.0f;
   bool validation = false;
   bool domain_map = false;
+  std::string environment;  // equirectangular .hdr / .exr; empty: the scene's own environment
+  scene::EnvironmentOptions environment_options;
   render::RenderSettings settings;
   options::OptionFlags flags;  // the option table's flags that were given
 };
@@ -48,6 +52,9 @@ int run_render(RenderArgs a) {
   if (a.domain_map && !render::method_spec(a.settings.method).layers)
     throw std::invalid_argument("--domain-map: method " + a.settings.method + " keeps no pixel layers (restir-multilayer does)");
   scene::Scene scene = scene::load_scene(a.scene);
+  if (!a.environment.empty()) scene.environment.map = scene::load_environment_map(a.environment, a.environment_options);
+  const std::vector<std::string> unrendered = scene::unrendered_features(scene);
+  for (const std::string& feature : unrendered) std::fprintf(stderr, "not rendered: %s\n", feature.c_str());
   gpu::Context ctx({a.device, a.validation});
   render::Renderer renderer(ctx, scene, a.settings);
   fs::create_directories(a.out);
@@ -56,6 +63,7 @@ int run_render(RenderArgs a) {
   doc["scene"] = scene.name;
   doc["method"] = a.settings.method;
   doc["device"] = ctx.device_name();
+  doc["ignored"] = unrendered;
   doc["settings"] = {{"width", a.settings.width}, {"height", a.settings.height}, {"spp", a.settings.spp},
                      {"max_depth", a.settings.max_depth}, {"seed", a.settings.seed}, {"accumulate", a.accumulate}};
   doc["frames"] = nlohmann::json::array();
@@ -113,6 +121,12 @@ Runner add_render_command(CLI::App& app) {
   cmd->add_flag("--domain-map", a->domain_map,
                 "restir-multilayer: also write each frame's domain map, frame_NNNN_domains.png (red: 32 x active domains, "
                 "green: disoccluded, blue: covered)");
+  cmd->add_option("--environment", a->environment, "equirectangular HDR environment map (Radiance .hdr or OpenEXR)");
+  cmd->add_option("--environment-intensity", a->environment_options.intensity, "scales the environment map's radiance")
+      ->capture_default_str();
+  cmd->add_option("--environment-rotation", a->environment_options.rotation_degrees,
+                  "turns the environment map about +Y, degrees counter-clockwise seen from above")
+      ->capture_default_str();
   return [a] { return run_render(*a); };
 }
 

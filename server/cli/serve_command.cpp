@@ -101,6 +101,7 @@ Runner add_serve_command(CLI::App& app) {
   cmd->add_option("--max-pixels", l.max_pixels, "width * height of one session")->capture_default_str();
   cmd->add_option("--max-dimension", l.max_dimension, "width and height each")->capture_default_str();
   cmd->add_option("--max-scene-bytes", l.max_scene_bytes, "inline .glb and scene files")->capture_default_str();
+  cmd->add_option("--max-texture-bytes", l.max_texture_bytes, "a scene's decoded textures (RGBA8 with mip levels)")->capture_default_str();
   cmd->add_option("--max-instances", l.max_instances, "instances of one scene")->capture_default_str();
   cmd->add_option("--max-spp", l.max_spp, "samples per pixel per frame")->capture_default_str();
   cmd->add_option("--max-depth", l.max_depth, "path segments")->capture_default_str();

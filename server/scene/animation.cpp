@@ -80,6 +80,9 @@ float animation_duration(const Animation& animation) {
     if (!track.keys.empty()) end = std::max(end, track.keys.back().time);
   }
   if (!animation.lod_schedule.empty()) end = std::max(end, animation.lod_schedule.back().time);
+  for (const LightTrack& track : animation.light_tracks) {
+    if (!track.keys.empty()) end = std::max(end, track.keys.back().time);
+  }
   return end;
 }
 
@@ -102,6 +105,12 @@ FrameState Scene::frame_state(uint32_t frame) const {
     if (track.instance < instances.size() && !track.keys.empty()) {
       state.transforms[track.instance] = compose_trs(sample_transform(track.keys, time));
     }
+  }
+  state.lights.reserve(lights.size());
+  for (const Light& light : lights) state.lights.push_back(light.transform);
+  for (const LightTrack& track : animation.light_tracks) {
+    if (track.light < lights.size() && !track.keys.empty())
+      state.lights[track.light] = compose_trs(sample_transform(track.keys, time));
   }
   // The schedule is sorted by time, so the last key at or before `time` wins.
   for (const LodKey& key : animation.lod_schedule) {

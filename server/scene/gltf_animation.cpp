@@ -199,6 +199,15 @@ void convert_animations(const Source& s, const NodeTree& tree, Scene& scene) {
     for (float t : times) track.keys.push_back(world_at(tree, channels, chain, t));
     scene.animation.tracks.push_back(std::move(track));
   }
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const std::vector<int> chain = chain_of(tree, static_cast<int>(tree.light_node[i]));
+    const std::vector<float> times = key_times(channels, chain);
+    if (times.empty()) continue;
+    count_keys(times.size());
+    LightTrack track{static_cast<uint32_t>(i), {}};
+    for (float t : times) track.keys.push_back(world_at(tree, channels, chain, t));
+    scene.animation.light_tracks.push_back(std::move(track));
+  }
   if (tree.camera_node >= 0) {
     const std::vector<int> chain = chain_of(tree, tree.camera_node);
     const std::vector<float> times = key_times(channels, chain);

@@ -11,6 +11,10 @@ namespace strata::scene::gltf {
 
 // Every glTF material, in order (gltf_mesh.cpp).
 void convert_materials(const Source& source, Scene& scene);
+// Alpha modes and textures of every material (gltf_textures.cpp): decodes the images the
+// materials use into scene.textures, with their mip chains, within LoadLimits' texture limits.
+// Runs after convert_materials.
+void convert_material_textures(const Source& source, Scene& scene);
 // Every glTF mesh, in order, so glTF mesh i is Scene mesh i. Primitives without a material get a
 // default material appended to scene.materials (gltf_mesh.cpp).
 void convert_meshes(const Source& source, Scene& scene);
@@ -23,11 +27,15 @@ struct NodeTree {
   std::vector<glm::mat4> local_matrix;  // per node: its matrix (a TRS node's composed)
   std::vector<uint32_t> instance_node;  // per Scene instance: the node it came from
   int camera_node = -1;                 // the node Scene::camera came from
+  std::vector<uint32_t> light_node;     // per Scene light: the node it is attached to
 };
 // Instances (one per node with a mesh, depth-first, MSFT_lod levels folded in) and the camera.
 NodeTree convert_nodes(const Source& source, Scene& scene);
 
-// Animation channels into InstanceTrack and camera keys (gltf_animation.cpp).
+// KHR_lights_punctual lights on the nodes of the scene, in node order (gltf_lights.cpp).
+void convert_lights(const Source& source, NodeTree& tree, Scene& scene);
+
+// Animation channels into InstanceTrack, LightTrack and camera keys (gltf_animation.cpp).
 void convert_animations(const Source& source, const NodeTree& tree, Scene& scene);
 
 // A glTF rotation [x, y, z, w] as a unit quaternion. Rotations already unit length to 1e-3 are

@@ -1,8 +1,10 @@
 // load_gltf_file and load_glb_bytes: read safely (gltf_read), convert (gltf_mesh, gltf_nodes,
 // gltf_animation, gltf_extras), validate. Files that strata did not write (no extras.strata) get
 // the glTF scene's name (else the file's stem), and a white environment of radiance 1 when no
-// material emits, so that they are visible at all; otherwise the environment is black.
+// material emits, so that they are visible at all; otherwise the environment is black. A file whose
+// scene has no triangles is refused: there is nothing to render.
 #include "scene/gltf_convert.h"
+#include "scene/gltf_extensions.h"
 #include "scene/gltf_extras.h"
 #include "scene/gltf_read.h"
 #include "scene/scene_io.h"
@@ -18,14 +20,39 @@ bool has_emitter(const Scene& scene) {
   return false;
 }
 
+void require_geometry(const gltf::Source& source, const gltf::NodeTree& tree, const Scene& scene) {
+  const std::string what = source.label + ": the scene has no geometry: ";
+  if (scene.instances.empty()) {
+    if (source.model.nodes.empty()) throw SceneError(what + "the file has no nodes");
+    if (tree.scene_index < 0) throw SceneError(what + "none of its nodes has a mesh");
+    const std::string field = gltf::at("scenes", static_cast<size_t>(tree.scene_index));
+    if (source.model.scenes[static_cast<size_t>(tree.scene_index)].nodes.empty())
+      throw SceneError(what + field + ".nodes is empty");
+    throw SceneError(what + "none of the nodes of " + field + " has a mesh");
+  }
+  for (const Instance& instance : scene.instances) {
+    for (uint32_t mesh : instance.lod_meshes) {
+      for (const Primitive& p : scene.meshes[mesh].primitives) {
+        if (p.triangle_count() > 0) return;
+      }
+    }
+  }
+  throw SceneError(what + "the meshes of its " + gltf::count_of(scene.instances.size(), "instance") +
+                   " have no triangles");
+}
+
 Scene convert(const tinygltf::Model& model, const std::string& label,
               const std::string& fallback_name, const LoadLimits& limits) {
   const gltf::Source source{model, label, limits};
   Scene scene;
   gltf::convert_materials(source, scene);
+  gltf::convert_material_textures(source, scene);
   gltf::convert_meshes(source, scene);
-  const gltf::NodeTree tree = gltf::convert_nodes(source, scene);
+  gltf::NodeTree tree = gltf::convert_nodes(source, scene);
+  gltf::convert_lights(source, tree, scene);
+  require_geometry(source, tree, scene);
   gltf::convert_animations(source, tree, scene);
+  gltf::list_ignored_features(source, scene);
   if (!gltf::read_scene_extras(source, tree.scene_index, scene)) {
     const std::string gltf_name =
         tree.scene_index >= 0 ? model.scenes[static_cast<size_t>(tree.scene_index)].name : "";

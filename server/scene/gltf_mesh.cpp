@@ -56,6 +56,23 @@ uint32_t material_of(const Source& s, const tinygltf::Primitive& p, const std::s
   return static_cast<uint32_t>(p.material);
 }
 
+// A TRIANGLE_STRIP or TRIANGLE_FAN as a triangle list, with the vertex order glTF 2.0 gives
+// (section 3.7.2.1): strip triangle i is {v_i, v_i+(1+i%2), v_i+(2-i%2)}, fan triangle i is
+// {v_i+1, v_i+2, v_0}, so every triangle keeps the winding of the first.
+std::vector<uint32_t> triangle_list(const std::vector<uint32_t>& v, int mode) {
+  std::vector<uint32_t> out;
+  if (v.size() < 3) return out;
+  out.reserve(3 * (v.size() - 2));
+  for (size_t i = 0; i + 2 < v.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      out.insert(out.end(), {v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
+    } else {
+      out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
+    }
+  }
+  return out;
+}
+
 // Keeps normals within 1e-3 of unit length as they are, normalises the rest and replaces the
 // ones that cannot be normalised by the generated normal.
 void repair_normals(Primitive& out) {
@@ -72,11 +89,58 @@ void repair_normals(Primitive& out) {
   }
 }
 
+// TEXCOORD_1 where a texture of the material reads set 1, TANGENT where the material has a normal
+// texture (tangents are unit length in xyz, w = +-1); neither is kept otherwise.
+void read_texture_attributes(const Source& s, const tinygltf::Primitive& p, const std::string& field,
+                             const Material& material, size_t vertices, Primitive& out) {
+  bool set1 = false;
+  for (const TextureRef* ref : {&material.base_color_texture, &material.metallic_roughness_texture,
+                                &material.normal_texture, &material.emissive_texture}) {
+    set1 = set1 || (ref->texture >= 0 && ref->tex_coord == 1);
+  }
+  auto checked = [&](const char* name) -> int {
+    const auto it = p.attributes.find(name);
+    if (it == p.attributes.end()) return -1;
+    const std::string attr_field = field + ".attributes." + name;
+    const size_t count = accessor_count(s, it->second, attr_field);
+    if (count != vertices) {
+      s.fail(attr_field, "has " + std::to_string(count) + " elements, POSITION has " + std::to_string(vertices));
+    }
+    return it->second;
+  };
+  if (set1) {
+    const int accessor = checked("TEXCOORD_1");
+    if (accessor < 0) {
+      s.fail(field + ".attributes.TEXCOORD_1",
+             "is missing (materials[" + std::to_string(out.material) + "] reads texture coordinate set 1)");
+    }
+    out.uvs1 = read_vec2(s, accessor, Components::kFloatOrNormalizedUnsigned, field + ".attributes.TEXCOORD_1");
+  }
+  if (material.normal_texture.texture >= 0) {
+    const int accessor = checked("TANGENT");
+    if (accessor < 0) return;
+    const std::string attr_field = field + ".attributes.TANGENT";
+    const std::vector<float> v = read_floats(s, accessor, 4, Components::kFloatOnly, attr_field);
+    out.tangents.resize(vertices);
+    for (size_t i = 0; i < vertices; ++i) {
+      const glm::vec3 t(v[4 * i], v[4 * i + 1], v[4 * i + 2]);
+      const float length = glm::length(t);
+      if (!(length > 1e-12f)) s.fail(at(attr_field, i), "is not a direction (zero length)");
+      out.tangents[i] = glm::vec4(t / length, v[4 * i + 3] < 0.0f ? -1.0f : 1.0f);
+    }
+  }
+}
+
 Primitive convert_primitive(const Source& s, const tinygltf::Primitive& p, const std::string& field,
                             Scene& scene, MeshState& state) {
-  if (p.mode != TINYGLTF_MODE_TRIANGLES) {
-    s.fail(field + ".mode",
-           "= " + std::to_string(p.mode) + " is not supported (only TRIANGLES, mode 4)");
+  const bool list = p.mode == TINYGLTF_MODE_TRIANGLES;
+  if (!list && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP && p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    constexpr const char* kNames[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP"};
+    const std::string name =
+        p.mode >= 0 && p.mode < 4 ? std::string(" (") + kNames[p.mode] + ")" : std::string();
+    s.fail(field + ".mode", "= " + std::to_string(p.mode) + name +
+                                " is not supported: strata renders triangles (TRIANGLES, "
+                                "TRIANGLE_STRIP and TRIANGLE_FAN, modes 4 to 6)");
   }
   const auto pos_it = p.attributes.find("POSITION");
   if (pos_it == p.attributes.end()) s.fail(field + ".attributes.POSITION", "is missing");
@@ -87,7 +151,7 @@ Primitive convert_primitive(const Source& s, const tinygltf::Primitive& p, const
   // Count triangles before reading anything large, so an oversized file fails fast.
   const size_t corners =
       p.indices >= 0 ? accessor_count(s, p.indices, field + ".indices") : vertices;
-  state.triangles += corners / 3;
+  state.triangles += list ? corners / 3 : corners >= 3 ? corners - 2 : 0;
   if (state.triangles > s.limits.max_triangles) {
     s.fail(field, "brings the triangle count to " + std::to_string(state.triangles) +
                       ", over LoadLimits::max_triangles (" +
@@ -100,13 +164,13 @@ Primitive convert_primitive(const Source& s, const tinygltf::Primitive& p, const
   if (p.indices >= 0) {
     out.indices = read_indices(s, p.indices, field + ".indices");
   } else {
-    if (vertices % 3 != 0)
+    if (list && vertices % 3 != 0)
       s.fail(field,
              "has " + std::to_string(vertices) + " vertices and no indices, not a multiple of 3");
     out.indices.resize(vertices);
     std::iota(out.indices.begin(), out.indices.end(), 0u);
   }
-  if (out.indices.size() % 3 != 0) {
+  if (list && out.indices.size() % 3 != 0) {
     s.fail(field + ".indices",
            "has " + std::to_string(out.indices.size()) + " entries, not a multiple of 3");
   }
@@ -117,6 +181,7 @@ Primitive convert_primitive(const Source& s, const tinygltf::Primitive& p, const
                                             " vertices)");
     }
   }
+  if (!list) out.indices = triangle_list(out.indices, p.mode);
   for (const char* name : {"NORMAL", "TEXCOORD_0"}) {
     const auto it = p.attributes.find(name);
     if (it == p.attributes.end()) continue;
@@ -132,6 +197,7 @@ Primitive convert_primitive(const Source& s, const tinygltf::Primitive& p, const
       out.uvs = read_vec2(s, it->second, Components::kFloatOrNormalizedUnsigned, attr_field);
     }
   }
+  read_texture_attributes(s, p, field, scene.materials[out.material], vertices, out);
   if (out.normals.empty()) {
     out.normals = area_weighted_normals(out.positions, out.indices);
   } else {
@@ -172,6 +238,10 @@ void convert_meshes(const Source& s, Scene& scene) {
   MeshState state;
   for (size_t m = 0; m < s.model.meshes.size(); ++m) {
     const tinygltf::Mesh& mesh = s.model.meshes[m];
+    if (mesh.primitives.empty()) {
+      s.fail(at("meshes", m) + ".primitives",
+             "is empty or not an array (a mesh needs at least one primitive)");
+    }
     Mesh out;
     out.name = mesh.name;
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {

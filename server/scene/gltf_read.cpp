@@ -4,6 +4,8 @@
 #include <fstream>
 #include <limits>
 
+#include "scene/gltf_extensions.h"
+
 namespace strata::scene::gltf {
 namespace {
 
@@ -153,9 +155,13 @@ bool refuse_write(std::string* err, const std::string&, const std::vector<unsign
   return false;
 }
 
-// strata renders without textures: images are neither decoded nor kept.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                const unsigned char*, int, void*) {
+// Keeps the encoded bytes of each image given by URI (data: or a file), for gltf_textures.cpp to
+// decode the ones materials use. Images in a bufferView are read from it there, range-checked:
+// tinygltf hands this callback a pointer into the buffer without checking the view's extent.
+bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                        const unsigned char* bytes, int size, void*) {
+  if (image->bufferView == -1 && bytes != nullptr && size > 0) image->image.assign(bytes, bytes + size);
+  image->as_is = true;
   return true;
 }
 
@@ -193,6 +199,7 @@ tinygltf::Model parse_model(std::span<const uint8_t> bytes, const std::string& l
       fail(label, "is not a glTF file (neither a .glb header nor a JSON object)");
   }
   check_json_depth(json, label);
+  refuse_required_extensions(json, label);
 
   FileGuard guard;
   guard.budget = budget;
@@ -206,7 +213,7 @@ tinygltf::Model parse_model(std::span<const uint8_t> bytes, const std::string& l
   }
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&guarded_exists, &identity_path, &guarded_read, &refuse_write, &guard});
-  loader.SetImageLoader(&skip_image, nullptr);
+  loader.SetImageLoader(&keep_encoded_image, nullptr);
   tinygltf::Model model;
   std::string error, warning;
   const std::string base_dir = guard.root ? guard.root->string() : std::string();
@@ -223,6 +230,7 @@ tinygltf::Model parse_model(std::span<const uint8_t> bytes, const std::string& l
   }
   if (!guard.violation.empty()) fail(label, guard.violation);
   if (!ok) {
+    if (error.empty()) error = warning;  // e.g. "Image data is empty for image[0]"
     if (error.size() > kMaxQuotedError) error = error.substr(0, kMaxQuotedError) + "...";
     while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
     fail(label, "invalid glTF: " + (error.empty() ? std::string("tinygltf rejected it") : error));

@@ -20,6 +20,8 @@ Primitive compact(const Primitive& source, std::vector<uint32_t> indices) {
     out.positions.push_back(source.positions[v]);
     out.normals.push_back(source.normals[v]);
     out.uvs.push_back(source.uvs[v]);
+    if (!source.uvs1.empty()) out.uvs1.push_back(source.uvs1[v]);
+    if (!source.tangents.empty()) out.tangents.push_back(source.tangents[v]);
   }
   for (uint32_t& index : indices) index = remap[index];
   out.indices = std::move(indices);

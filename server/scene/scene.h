@@ -19,6 +19,85 @@ struct SceneError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Thrown when scene input exceeds a resource limit (texture bytes, texture dimension): the message
+// names the limit. The service answers it with RESOURCE_EXHAUSTED.
+struct SceneLimitError : SceneError {
+  using SceneError::SceneError;
+};
+
+// ---- Textures (glTF textures, samplers and images) ---------------------------------------------
+// Laid out to be uploaded as they are: every texel of every mip level of every image in one array
+// (TextureSet::texels), images and levels as flat tables indexing into it.
+
+enum class ColorSpace : uint8_t { kLinear = 0, kSrgb = 1 };  // of RGB; alpha is always linear
+enum class TextureFilter : uint8_t { kNearest = 0, kLinear = 1 };
+enum class MipFilter : uint8_t { kNone = 0, kNearest = 1, kLinear = 2 };  // kNone: level 0 only
+enum class TextureWrap : uint8_t { kRepeat = 0, kClampToEdge = 1, kMirroredRepeat = 2 };
+
+// glTF sampler; the defaults are what glTF leaves to the implementation (trilinear, repeat).
+struct Sampler {
+  TextureFilter mag_filter = TextureFilter::kLinear;
+  TextureFilter min_filter = TextureFilter::kLinear;
+  MipFilter mip_filter = MipFilter::kLinear;
+  TextureWrap wrap_u = TextureWrap::kRepeat;  // glTF wrapS
+  TextureWrap wrap_v = TextureWrap::kRepeat;  // glTF wrapT
+  bool operator==(const Sampler&) const = default;
+};
+
+// One mip level: width x height texels at TextureSet::texels[offset], row-major, top row first.
+struct MipLevel {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  uint32_t offset = 0;
+  bool operator==(const MipLevel&) const = default;
+};
+
+// A decoded image and its mip chain (scene/texture_mips.h). UV (0, 0) is the top-left corner of
+// the image, UV (1, 1) the bottom-right, as glTF defines.
+struct TextureImage {
+  std::string name;  // the glTF image's name, else its URI, else "images[i]"
+  ColorSpace color_space = ColorSpace::kSrgb;
+  uint32_t first_level = 0;  // into TextureSet::levels
+  uint32_t level_count = 0;  // down to 1 x 1
+  bool operator==(const TextureImage&) const = default;
+};
+
+struct Texture {
+  uint32_t image = 0;  // into TextureSet::images
+  Sampler sampler;
+  bool operator==(const Texture&) const = default;
+};
+
+struct TextureSet {
+  std::vector<TextureImage> images;
+  std::vector<MipLevel> levels;
+  std::vector<Texture> textures;
+  // RGBA8: R | G << 8 | B << 16 | A << 24 (VK_FORMAT_R8G8B8A8 byte order, GLSL unpackUnorm4x8).
+  std::vector<uint32_t> texels;
+  uint64_t bytes() const { return uint64_t(texels.size()) * 4; }
+  bool operator==(const TextureSet&) const = default;
+};
+
+// KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv, applied before the lookup.
+struct TextureTransform {
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;  // radians; positive turns UVs counter-clockwise as glTF defines
+  glm::vec2 scale{1.0f};
+  // The 3 x 3 matrix of the transform (its last row is 0, 0, 1).
+  glm::mat3 matrix() const;
+  bool operator==(const TextureTransform&) const = default;
+};
+
+// A material's use of a texture (glTF textureInfo).
+struct TextureRef {
+  int32_t texture = -1;    // into TextureSet::textures; -1: none
+  uint32_t tex_coord = 0;  // 0: Primitive::uvs, 1: Primitive::uvs1 (KHR_texture_transform's override applied)
+  TextureTransform transform;
+  bool operator==(const TextureRef&) const = default;
+};
+
+enum class AlphaMode : uint8_t { kOpaque = 0, kMask = 1, kBlend = 2 };
+
 // glTF metallic-roughness, rendered as Lambert + GGX (see shaders/material/).
 struct Material {
   std::string name;
@@ -28,6 +107,19 @@ struct Material {
   glm::vec3 emission{0.0f};        // emissiveFactor * KHR_materials_emissive_strength (radiance)
   float specular = 1.0f;           // KHR_materials_specular specularFactor: dielectric F0 = 0.04 * specular
   bool double_sided = false;
+  // baseColorFactor's alpha, alphaMode and alphaCutoff. Coverage = alpha x the base colour
+  // texture's alpha; MASK keeps a surface where coverage >= alpha_cutoff.
+  float alpha = 1.0f;
+  AlphaMode alpha_mode = AlphaMode::kOpaque;
+  float alpha_cutoff = 0.5f;
+  // Textures multiply the factors above, as glTF defines: base colour (sRGB RGB, linear alpha),
+  // metallic-roughness (linear; G roughness, B metallic), normal (linear tangent-space normal,
+  // xy scaled by normal_scale), emissive (sRGB).
+  TextureRef base_color_texture;
+  TextureRef metallic_roughness_texture;
+  TextureRef normal_texture;
+  float normal_scale = 1.0f;
+  TextureRef emissive_texture;
   bool operator==(const Material&) const = default;
 };
 
@@ -36,6 +128,11 @@ struct Primitive {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // unit length; generated (area-weighted) when the file has none
   std::vector<glm::vec2> uvs;      // TEXCOORD_0; zeros when the file has none
+  // TEXCOORD_1, only when a texture of the primitive's material reads set 1; else empty.
+  std::vector<glm::vec2> uvs1;
+  // TANGENT (xyz unit, w = +-1 the bitangent's sign), only when the material has a normal texture
+  // and the file gives tangents; else empty (tangents then follow from the UVs per triangle).
+  std::vector<glm::vec4> tangents;
   std::vector<uint32_t> indices;   // 3 per triangle
   uint32_t material = 0;
   size_t triangle_count() const { return indices.size() / 3; }
@@ -71,9 +168,50 @@ struct Camera {
   bool operator==(const Camera&) const = default;
 };
 
-// Constant environment radiance seen by rays that escape (and sampled by NEE when non-zero).
+// KHR_lights_punctual. Units as for emission: a point or spot light's intensity (candela) is read
+// in the renderer's radiance units per steradian, so a light of intensity I at distance d gives
+// irradiance I / d^2 on a surface facing it; a directional light's intensity (lux) is the
+// irradiance on a surface facing it. A light shines down its local -Z (spot, directional); a spot's
+// falloff is the extension's: full inside inner_cone, zero outside outer_cone, smooth between.
+enum class LightType : uint8_t { kDirectional = 0, kPoint = 1, kSpot = 2 };
+struct Light {
+  std::string name;
+  LightType type = LightType::kPoint;
+  glm::vec3 color{1.0f};  // linear
+  float intensity = 1.0f;
+  float range = 0.0f;  // 0: unlimited; else the light fades to zero at this distance
+  float inner_cone = 0.0f;             // radians, spot only; 0 <= inner_cone < outer_cone
+  float outer_cone = 0.78539816339f;   // radians, spot only; <= pi / 2
+  // Light to world at rest: the world transform of the node the light is attached to. The light
+  // follows its node: Animation::light_tracks carries the node's animation.
+  glm::mat4 transform{1.0f};
+  bool operator==(const Light&) const = default;
+};
+
+// An equirectangular HDR image as the environment (scene/environment_map.h for the mapping and
+// its importance sampling). Row 0 looks straight up (+Y); the image's centre column looks down -Z,
+// where a default camera looks, and u grows towards +X from there.
+struct EnvironmentMap {
+  std::string name;  // the file it came from
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<glm::vec3> radiance;  // linear, row-major, top row first, before `intensity`
+  float intensity = 1.0f;           // scales radiance
+  float rotation = 0.0f;            // radians about +Y, counter-clockwise seen from above
+  // Importance sampling by luminance x solid angle: texel weights w = Y(radiance) sin(theta) at
+  // the texel's centre; per row the CDF over its columns (width + 1 entries, 0 to 1), over the
+  // rows the CDF of their sums (height + 1 entries); weight_sum = sum of w (0: a black map).
+  std::vector<float> conditional_cdf;
+  std::vector<float> marginal_cdf;
+  double weight_sum = 0.0;
+  bool operator==(const EnvironmentMap&) const = default;
+};
+
+// Constant environment radiance seen by rays that escape (and sampled by NEE when non-zero),
+// or an environment map.
 struct Environment {
   glm::vec3 radiance{0.0f};
+  std::optional<EnvironmentMap> map;
   bool operator==(const Environment&) const = default;
 };
 
@@ -97,6 +235,11 @@ struct InstanceTrack {  // replaces the instance's transform while it has keys
   std::vector<TransformKey> keys;
   bool operator==(const InstanceTrack&) const = default;
 };
+struct LightTrack {  // replaces the light's transform while it has keys
+  uint32_t light = 0;
+  std::vector<TransformKey> keys;
+  bool operator==(const LightTrack&) const = default;
+};
 struct LodKey {  // from `time` on, `instance` uses `level`
   float time = 0.0f;
   uint32_t instance = 0;
@@ -108,6 +251,7 @@ struct Animation {
   std::vector<CameraKey> camera;  // empty: camera stays still
   std::vector<InstanceTrack> tracks;
   std::vector<LodKey> lod_schedule;  // sorted by time
+  std::vector<LightTrack> light_tracks;
   bool operator==(const Animation&) const = default;
 };
 
@@ -116,6 +260,7 @@ struct FrameState {
   Camera camera;                      // at the frame's instant, where the shutter closes
   std::vector<glm::mat4> transforms;  // per instance, object to world
   std::vector<uint32_t> lods;         // per instance, level in use
+  std::vector<glm::mat4> lights;      // per light, light to world
   // Where the shutter opened (scene/shutter.h): over the shutter the camera moves from it to
   // `camera` (RS-supp 3.3.1). None: the frame is an instant (shutter closed, or nothing moved).
   std::optional<Camera> camera_open;
@@ -125,11 +270,17 @@ struct FrameState {
 struct Scene {
   std::string name;
   std::vector<Material> materials;
+  TextureSet textures;
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;
+  std::vector<Light> lights;
   Camera camera;
   Environment environment;
   Animation animation;
+  // What the source file holds that the scene model leaves out, one phrase each
+  // ("KHR_materials_clearcoat on 3 materials (rendered without the coat)"); empty for built-in
+  // scenes. scene/unrendered.h adds what the model keeps but the renderer does not draw.
+  std::vector<std::string> ignored_features;
 
   // The scene's state at frame `frame` of its default animation.
   FrameState frame_state(uint32_t frame) const;

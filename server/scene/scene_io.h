@@ -16,6 +16,10 @@ struct LoadLimits {
   uint64_t max_triangles = 8'000'000;
   uint32_t max_instances = 65'536;
   uint32_t max_lod_levels = 8;
+  // Decoded textures: every texel of every mip level as RGBA8, and the longest side of one image.
+  // Exceeding either is a SceneLimitError naming it.
+  uint64_t max_texture_bytes = 1ull << 30;
+  uint32_t max_texture_dimension = 8192;
 };
 
 // glTF 2.0 (.gltf with external or embedded buffers, or .glb). Throws SceneError.
@@ -26,7 +30,9 @@ Scene load_glb_bytes(std::span<const uint8_t> bytes, const std::string& label,
 
 // Writes the scene as .glb: MSFT_lod for LoD groups, glTF animations for the default animation,
 // strata-specific data (aperture, focus distance, environment, LoD schedule) in `extras`.
-// load_glb_bytes(export_glb(s)) == s for every built-in scene.
+// load_glb_bytes(export_glb(s)) == s for every built-in scene. Textures, alpha modes, punctual
+// lights, environment maps and Scene::ignored_features are not written (no built-in scene has
+// them).
 std::vector<uint8_t> export_glb(const Scene& scene);
 void export_glb_file(const Scene& scene, const std::filesystem::path& path);
 

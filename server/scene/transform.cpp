@@ -34,3 +34,17 @@ TransformKey decompose_trs(const glm::mat4& matrix) {
 }
 
 }  // namespace strata::scene
+
+namespace strata::scene {
+
+// KHR_texture_transform's matrix: translation * rotation * scale, with the rotation
+// [cos sin; -sin cos] as the extension's specification writes it (rows).
+glm::mat3 TextureTransform::matrix() const {
+  const float c = std::cos(rotation), s = std::sin(rotation);
+  const glm::mat3 t(glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(offset, 1));
+  const glm::mat3 r(glm::vec3(c, -s, 0), glm::vec3(s, c, 0), glm::vec3(0, 0, 1));
+  const glm::mat3 sc(glm::vec3(scale.x, 0, 0), glm::vec3(0, scale.y, 0), glm::vec3(0, 0, 1));
+  return t * r * sc;
+}
+
+}  // namespace strata::scene

@@ -48,6 +48,30 @@ void check_range(const std::string& field, float value, float lo, float hi) {
   }
 }
 
+void validate_texture_ref(const std::string& field, const TextureRef& ref, size_t texture_count) {
+  if (ref.texture < 0) return;
+  check_index(field + ".texture", uint64_t(ref.texture), texture_count, "textures");
+  if (ref.tex_coord > 1) fail(field + ".tex_coord", "= " + std::to_string(ref.tex_coord) + " is not 0 or 1");
+  check_finite(field + ".transform.offset", ref.transform.offset);
+  check_finite(field + ".transform.rotation", ref.transform.rotation);
+  check_finite(field + ".transform.scale", ref.transform.scale);
+}
+
+void validate_textures(const TextureSet& t) {
+  for (size_t i = 0; i < t.levels.size(); ++i) {
+    const MipLevel& l = t.levels[i];
+    if (l.width == 0 || l.height == 0 || uint64_t(l.offset) + uint64_t(l.width) * l.height > t.texels.size())
+      fail(at("textures.levels", i), "lies outside textures.texels (" + std::to_string(t.texels.size()) + " texels)");
+  }
+  for (size_t i = 0; i < t.images.size(); ++i) {
+    const TextureImage& image = t.images[i];
+    if (image.level_count == 0 || uint64_t(image.first_level) + image.level_count > t.levels.size())
+      fail(at("textures.images", i), "has levels outside textures.levels");
+  }
+  for (size_t i = 0; i < t.textures.size(); ++i)
+    check_index(at("textures.textures", i) + ".image", t.textures[i].image, t.images.size(), "images");
+}
+
 void validate_material(const std::string& field, const Material& m) {
   for (int c = 0; c < 3; ++c) check_range(field + ".base_color", m.base_color[c], 0.0f, 1.0f);
   check_range(field + ".metallic", m.metallic, 0.0f, 1.0f);
@@ -55,9 +79,14 @@ void validate_material(const std::string& field, const Material& m) {
   check_finite(field + ".emission", m.emission);
   if (glm::any(glm::lessThan(m.emission, glm::vec3(0.0f))))
     fail(field + ".emission", "is negative");
+  check_range(field + ".alpha", m.alpha, 0.0f, 1.0f);
+  check_finite(field + ".alpha_cutoff", m.alpha_cutoff);
+  if (m.alpha_cutoff < 0.0f) fail(field + ".alpha_cutoff", "is negative");
+  check_finite(field + ".normal_scale", m.normal_scale);
 }
 
-void validate_primitive(const std::string& field, const Primitive& p, size_t material_count) {
+void validate_primitive(const std::string& field, const Primitive& p, const std::vector<Material>& materials) {
+  const size_t material_count = materials.size();
   const size_t n = p.positions.size();
   if (p.normals.size() != n) {
     fail(field + ".normals", "has " + std::to_string(p.normals.size()) +
@@ -72,6 +101,18 @@ void validate_primitive(const std::string& field, const Primitive& p, size_t mat
          "has " + std::to_string(p.indices.size()) + " entries, not a multiple of 3");
   }
   check_index(field + ".material", p.material, material_count, "materials");
+  if (!p.uvs1.empty() && p.uvs1.size() != n)
+    fail(field + ".uvs1", "has " + std::to_string(p.uvs1.size()) + " entries, positions has " + std::to_string(n));
+  if (!p.tangents.empty() && p.tangents.size() != n)
+    fail(field + ".tangents", "has " + std::to_string(p.tangents.size()) + " entries, positions has " + std::to_string(n));
+  const Material& m = materials[p.material];
+  for (const TextureRef* ref : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
+                                &m.emissive_texture}) {
+    if (ref->texture >= 0 && ref->tex_coord == 1 && p.uvs1.size() != n)
+      fail(field + ".uvs1", "is missing: materials[" + std::to_string(p.material) + "] reads texture coordinate set 1");
+  }
+  for (size_t i = 0; i < p.uvs1.size(); ++i) check_finite(at(field + ".uvs1", i), p.uvs1[i]);
+  for (size_t i = 0; i < p.tangents.size(); ++i) check_finite(at(field + ".tangents", i), p.tangents[i]);
   for (size_t i = 0; i < p.indices.size(); ++i)
     check_index(at(field + ".indices", i), p.indices[i], n, "vertices");
   for (size_t i = 0; i < n; ++i) {
@@ -80,6 +121,22 @@ void validate_primitive(const std::string& field, const Primitive& p, size_t mat
     check_finite(at(field + ".normals", i), p.normals[i]);
     if (std::abs(glm::length(p.normals[i]) - 1.0f) > 1e-3f)
       fail(at(field + ".normals", i), "is not unit length");
+  }
+}
+
+void validate_light(const std::string& field, const Light& l) {
+  check_finite(field + ".color", l.color);
+  if (glm::any(glm::lessThan(l.color, glm::vec3(0.0f)))) fail(field + ".color", "is negative");
+  check_finite(field + ".intensity", l.intensity);
+  if (l.intensity < 0.0f) fail(field + ".intensity", "is negative");
+  check_finite(field + ".range", l.range);
+  if (l.range < 0.0f) fail(field + ".range", "is negative");
+  check_finite(field + ".transform", l.transform);
+  if (l.type == LightType::kSpot) {
+    check_range(field + ".outer_cone", l.outer_cone, 0.0f, 1.5707964f);
+    check_range(field + ".inner_cone", l.inner_cone, 0.0f, 1.5707964f);
+    if (!(l.inner_cone < l.outer_cone))
+      fail(field + ".inner_cone", "= " + std::to_string(l.inner_cone) + " is not below outer_cone");
   }
 }
 
@@ -128,6 +185,16 @@ void validate_animation(const Scene& s) {
       check_finite(at(field + ".keys", k) + ".scale", track.keys[k].scale);
     }
   }
+  for (size_t t = 0; t < a.light_tracks.size(); ++t) {
+    const std::string field = at("animation.light_tracks", t);
+    check_index(field + ".light", a.light_tracks[t].light, s.lights.size(), "lights");
+    check_sorted(field + ".keys", a.light_tracks[t].keys);
+    for (size_t k = 0; k < a.light_tracks[t].keys.size(); ++k) {
+      check_finite(at(field + ".keys", k) + ".translation", a.light_tracks[t].keys[k].translation);
+      check_finite(at(field + ".keys", k) + ".rotation", a.light_tracks[t].keys[k].rotation);
+      check_finite(at(field + ".keys", k) + ".scale", a.light_tracks[t].keys[k].scale);
+    }
+  }
   check_sorted("animation.lod_schedule", a.lod_schedule);
   for (size_t k = 0; k < a.lod_schedule.size(); ++k) {
     const std::string field = at("animation.lod_schedule", k);
@@ -144,16 +211,26 @@ constexpr size_t kMaxInstances = (size_t(1) << 20) - 1;
 }  // namespace
 
 void Scene::validate() const {
-  for (size_t m = 0; m < materials.size(); ++m) validate_material(at("materials", m), materials[m]);
+  validate_textures(textures);
+  for (size_t m = 0; m < materials.size(); ++m) {
+    validate_material(at("materials", m), materials[m]);
+    const Material& mat = materials[m];
+    validate_texture_ref(at("materials", m) + ".base_color_texture", mat.base_color_texture, textures.textures.size());
+    validate_texture_ref(at("materials", m) + ".metallic_roughness_texture", mat.metallic_roughness_texture,
+                         textures.textures.size());
+    validate_texture_ref(at("materials", m) + ".normal_texture", mat.normal_texture, textures.textures.size());
+    validate_texture_ref(at("materials", m) + ".emissive_texture", mat.emissive_texture, textures.textures.size());
+  }
   for (size_t m = 0; m < meshes.size(); ++m) {
+    if (meshes[m].primitives.empty())
+      fail(at("meshes", m) + ".primitives", "is empty (a mesh needs at least one primitive)");
     // A path sample stores the primitive in 12 bits (shaders/restir/reservoir.h).
     if (meshes[m].primitives.size() > kMaxPrimitivesPerMesh)
       fail(at("meshes", m) + ".primitives",
            "has " + std::to_string(meshes[m].primitives.size()) + " primitives; the limit is " +
                std::to_string(kMaxPrimitivesPerMesh) + " per mesh");
     for (size_t p = 0; p < meshes[m].primitives.size(); ++p) {
-      validate_primitive(at(at("meshes", m) + ".primitives", p), meshes[m].primitives[p],
-                         materials.size());
+      validate_primitive(at(at("meshes", m) + ".primitives", p), meshes[m].primitives[p], materials);
     }
   }
   // Instance ids live in 20 bits of a path sample, all ones reserved (shaders/restir/reservoir.h).
@@ -171,10 +248,21 @@ void Scene::validate() const {
     check_index(field + ".lod", instance.lod, instance.lod_meshes.size(), "LoD levels");
     check_finite(field + ".transform", instance.transform);
   }
+  for (size_t l = 0; l < lights.size(); ++l) validate_light(at("lights", l), lights[l]);
   validate_camera(camera);
   check_finite("environment.radiance", environment.radiance);
   if (glm::any(glm::lessThan(environment.radiance, glm::vec3(0.0f))))
     fail("environment.radiance", "is negative");
+  if (environment.map) {
+    const EnvironmentMap& m = *environment.map;
+    if (m.width == 0 || m.height == 0 || m.radiance.size() != size_t(m.width) * m.height)
+      fail("environment.map.radiance", "does not hold width x height texels");
+    if (m.conditional_cdf.size() != size_t(m.height) * (m.width + 1) || m.marginal_cdf.size() != size_t(m.height) + 1)
+      fail("environment.map", "has sampling tables of the wrong size");
+    check_finite("environment.map.intensity", m.intensity);
+    if (m.intensity < 0.0f) fail("environment.map.intensity", "is negative");
+    check_finite("environment.map.rotation", m.rotation);
+  }
   validate_animation(*this);
 }
 

@@ -21,6 +21,7 @@ void ServiceConfig::validate() const {
   require_in("max_dimension", limits.max_dimension, 1, RenderLimits::max_dimension);
   require_in("max_pixels", limits.max_pixels, 1, RenderLimits::max_pixels);
   require_in("max_scene_bytes", limits.max_scene_bytes, 1024, 1ull << 30);
+  require_in("max_texture_bytes", limits.max_texture_bytes, 1ull << 20, 4ull << 30);  // texel offsets are 32-bit
   require_in("max_instances", limits.max_instances, 1, 1u << 20);
   require_in("max_spp", limits.max_spp, 1, RenderLimits::max_spp);
   require_in("max_depth", limits.max_depth, 1, RenderLimits::max_depth);

@@ -13,6 +13,7 @@ struct ServiceLimits {
   uint64_t max_pixels = 1920ull * 1080;   // width * height of one session
   uint32_t max_dimension = 8192;          // width and height each
   uint64_t max_scene_bytes = 64ull << 20;  // inline .glb, and files in the scene directory
+  uint64_t max_texture_bytes = 256ull << 20;  // a scene's decoded textures, RGBA8 with mip levels
   uint32_t max_instances = 4096;
   uint32_t max_spp = 1024;
   uint32_t max_depth = 64;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/unrendered.h"
+
 namespace strata::service {
 namespace {
 
@@ -60,6 +62,7 @@ v1::SceneAnalysis analyze_scene(const scene::Scene& s) {
   uint32_t frames = 1;
   if (moves && fps > 0.0f) frames = uint32_t(std::min(1e7f, std::floor(last_key_time(s.animation) * fps))) + 1;
   a.set_animation_frames(frames);
+  for (const std::string& feature : scene::unrendered_features(s)) a.add_ignored(feature);
   return a;
 }
 

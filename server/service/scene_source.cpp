@@ -25,7 +25,18 @@ scene::LoadLimits load_limits(const ServiceLimits& limits) {
   scene::LoadLimits l;
   l.max_file_bytes = limits.max_scene_bytes;
   l.max_instances = limits.max_instances;
+  l.max_texture_bytes = limits.max_texture_bytes;
   return l;
+}
+
+// Decoded textures over max_texture_bytes or the largest texture dimension are RESOURCE_EXHAUSTED.
+template <class Load>
+scene::Scene within_resource_limits(Load&& load) {
+  try {
+    return load();
+  } catch (const scene::SceneLimitError& e) {
+    fail(StatusCode::RESOURCE_EXHAUSTED, e.what());
+  }
 }
 
 bool is_scene_file(const fs::path& p) {
@@ -83,7 +94,7 @@ std::shared_ptr<const scene::Scene> load_scene_source(const v1::SceneSource& sou
       const uint64_t size = fs::file_size(file);
       if (size > limits.max_scene_bytes)
         fail_invalid("scene.path = '" + source.path() + "' is " + std::to_string(size) + " bytes; max_scene_bytes = " + max_bytes);
-      *s = scene::load_gltf_file(file, load_limits(limits));
+      *s = within_resource_limits([&] { return scene::load_gltf_file(file, load_limits(limits)); });
       break;
     }
     case v1::SceneSource::kGlb: {
@@ -94,7 +105,7 @@ std::shared_ptr<const scene::Scene> load_scene_source(const v1::SceneSource& sou
       const std::string label = source.label().empty() ? "inline.glb" : source.label();
       if (label.size() > 256) fail_invalid("scene.label is " + std::to_string(label.size()) + " characters long; at most 256");
       std::span<const uint8_t> data(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
-      *s = scene::load_glb_bytes(data, "scene.glb (" + label + ")", load_limits(limits));
+      *s = within_resource_limits([&] { return scene::load_glb_bytes(data, "scene.glb (" + label + ")", load_limits(limits)); });
       if (s->name.empty()) s->name = label;
       break;
     }

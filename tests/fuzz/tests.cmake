@@ -8,7 +8,7 @@ if(STRATA_CLANGXX)
   set(STRATA_FUZZ_SECONDS 6 CACHE STRING "seconds each fuzz target runs in ctest -L fuzz")
   add_test(NAME fuzz.build COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/run-fuzz.sh build ${STRATA_FUZZ_DIR})
   set_tests_properties(fuzz.build PROPERTIES LABELS fuzz TIMEOUT 900 FIXTURES_SETUP strata_fuzz_build)
-  foreach(target gltf create_session frame_input camera_path exr)
+  foreach(target gltf create_session frame_input camera_path exr texture environment)
     add_test(NAME fuzz.${target}
              COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/run-fuzz.sh run ${STRATA_FUZZ_DIR} ${target} ${STRATA_FUZZ_SECONDS})
     set_tests_properties(fuzz.${target} PROPERTIES LABELS fuzz TIMEOUT 120 FIXTURES_REQUIRED strata_fuzz_build)

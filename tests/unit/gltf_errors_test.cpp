@@ -120,7 +120,7 @@ TEST(GltfErrors, IndexOutOfRangeAndBadPrimitives) {
   g = quad_file();
   g.doc["meshes"][0]["primitives"][0]["mode"] = 1;
   EXPECT_TRUE(
-      contains(error_of(g.text_bytes()), "meshes[0].primitives[0].mode = 1 is not supported"));
+      contains(error_of(g.text_bytes()), "meshes[0].primitives[0].mode = 1 (LINES) is not supported"));
 
   g = quad_file();
   g.doc["meshes"][0]["primitives"][0]["material"] = 3;

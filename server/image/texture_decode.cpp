@@ -1,0 +1,129 @@
+#include "image/texture_decode.h"
+
+#include <climits>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+#include <stb_image.h>
+
+namespace strata::image {
+namespace {
+
+bool starts_with(std::span<const uint8_t> bytes, std::initializer_list<uint8_t> magic) {
+  if (bytes.size() < magic.size()) return false;
+  return std::equal(magic.begin(), magic.end(), bytes.begin());
+}
+
+bool starts_with(std::span<const uint8_t> bytes, const char* text) {
+  const size_t n = std::strlen(text);
+  return bytes.size() >= n && std::memcmp(bytes.data(), text, n) == 0;
+}
+
+int checked_length(std::span<const uint8_t> bytes) {
+  if (bytes.empty()) throw ImageError("the image is empty (0 bytes)");
+  if (bytes.size() > size_t(INT_MAX))
+    throw ImageError("the image is " + std::to_string(bytes.size()) + " bytes; the decoder takes at most 2 GiB");
+  return static_cast<int>(bytes.size());
+}
+
+std::string failure() {
+  const char* reason = stbi_failure_reason();
+  return reason != nullptr ? reason : "unknown error";
+}
+
+void check_dimensions(ImageSize size, uint32_t max_dimension) {
+  if (size.width == 0 || size.height == 0) throw ImageError("the image declares a zero size");
+  if (size.width > max_dimension || size.height > max_dimension) {
+    throw ImageError("the image is " + std::to_string(size.width) + " x " + std::to_string(size.height) +
+                     " texels, over the largest texture dimension (" + std::to_string(max_dimension) + ")");
+  }
+}
+
+struct StbFree {
+  void operator()(void* p) const { stbi_image_free(p); }
+};
+
+}  // namespace
+
+EncodedFormat sniff_format(std::span<const uint8_t> bytes) {
+  if (starts_with(bytes, {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A})) return EncodedFormat::kPng;
+  if (starts_with(bytes, {0xFF, 0xD8, 0xFF})) return EncodedFormat::kJpeg;
+  if (starts_with(bytes, "#?RADIANCE") || starts_with(bytes, "#?RGBE")) return EncodedFormat::kRadianceHdr;
+  if (starts_with(bytes, {0x76, 0x2F, 0x31, 0x01})) return EncodedFormat::kOpenExr;
+  return EncodedFormat::kOther;
+}
+
+std::string describe_encoded(std::span<const uint8_t> bytes) {
+  switch (sniff_format(bytes)) {
+    case EncodedFormat::kPng: return "a PNG image";
+    case EncodedFormat::kJpeg: return "a JPEG image";
+    case EncodedFormat::kRadianceHdr: return "a Radiance HDR image";
+    case EncodedFormat::kOpenExr: return "an OpenEXR image";
+    case EncodedFormat::kOther: break;
+  }
+  if (bytes.empty()) return "empty (0 bytes)";
+  if (starts_with(bytes, "GIF8")) return "a GIF image";
+  if (starts_with(bytes, "BM")) return "a BMP image";
+  if (starts_with(bytes, "DDS ")) return "a DDS texture";
+  if (starts_with(bytes, {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB})) return "a KTX2 texture";
+  if (starts_with(bytes, {0xAB, 'K', 'T', 'X', ' ', '1', '1', 0xBB})) return "a KTX texture";
+  if (bytes.size() >= 12 && starts_with(bytes, "RIFF") && std::memcmp(bytes.data() + 8, "WEBP", 4) == 0)
+    return "a WebP image";
+  if (bytes.size() >= 12 && std::memcmp(bytes.data() + 4, "ftypavif", 8) == 0) return "an AVIF image";
+  std::string hex = "bytes starting";
+  for (size_t i = 0; i < std::min<size_t>(bytes.size(), 4); ++i) {
+    char b[4];
+    std::snprintf(b, sizeof b, " %02x", bytes[i]);
+    hex += b;
+  }
+  return hex;
+}
+
+ImageSize encoded_size(std::span<const uint8_t> bytes) {
+  const EncodedFormat format = sniff_format(bytes);
+  if (format != EncodedFormat::kPng && format != EncodedFormat::kJpeg && format != EncodedFormat::kRadianceHdr)
+    throw ImageError("unsupported image type: " + describe_encoded(bytes));
+  int w = 0, h = 0, comp = 0;
+  if (stbi_info_from_memory(bytes.data(), checked_length(bytes), &w, &h, &comp) == 0 || w <= 0 || h <= 0)
+    throw ImageError("cannot read the " + describe_encoded(bytes).substr(2) + "'s header: " + failure());
+  return {static_cast<uint32_t>(w), static_cast<uint32_t>(h)};
+}
+
+Rgba8Image decode_rgba8(std::span<const uint8_t> bytes, uint32_t max_dimension) {
+  const EncodedFormat format = sniff_format(bytes);
+  if (format != EncodedFormat::kPng && format != EncodedFormat::kJpeg)
+    throw ImageError("unsupported image type: " + describe_encoded(bytes) + " (textures are PNG or JPEG)");
+  const ImageSize size = encoded_size(bytes);
+  check_dimensions(size, max_dimension);
+  int w = 0, h = 0, comp = 0;
+  std::unique_ptr<stbi_uc, StbFree> pixels(stbi_load_from_memory(bytes.data(), checked_length(bytes), &w, &h, &comp, 4));
+  if (!pixels) throw ImageError("cannot decode the " + describe_encoded(bytes).substr(2) + ": " + failure());
+  if (uint32_t(w) != size.width || uint32_t(h) != size.height)
+    throw ImageError("the decoded size differs from the header's");
+  Rgba8Image out;
+  out.width = size.width;
+  out.height = size.height;
+  out.texels.resize(size_t(size.width) * size.height);
+  std::memcpy(out.texels.data(), pixels.get(), out.texels.size() * 4);  // RGBA bytes, little-endian words
+  return out;
+}
+
+Image decode_radiance_hdr(std::span<const uint8_t> bytes, uint32_t max_dimension) {
+  if (sniff_format(bytes) != EncodedFormat::kRadianceHdr)
+    throw ImageError("not a Radiance HDR image: " + describe_encoded(bytes));
+  const ImageSize size = encoded_size(bytes);
+  check_dimensions(size, max_dimension);
+  int w = 0, h = 0, comp = 0;
+  std::unique_ptr<float, StbFree> pixels(stbi_loadf_from_memory(bytes.data(), checked_length(bytes), &w, &h, &comp, 4));
+  if (!pixels) throw ImageError("cannot decode the Radiance HDR image: " + failure());
+  if (uint32_t(w) != size.width || uint32_t(h) != size.height)
+    throw ImageError("the decoded size differs from the header's");
+  Image out;
+  out.width = size.width;
+  out.height = size.height;
+  out.rgba.assign(pixels.get(), pixels.get() + size_t(w) * size_t(h) * 4);
+  return out;
+}
+
+}  // namespace strata::image
