@@ -36,13 +36,7 @@ Session::Session(std::string name, std::shared_ptr<const scene::Scene> scene, Se
       created_steady_(Clock::now()),
       created_(std::chrono::system_clock::now()),
       spec_(std::move(spec)) {
-  settings_.width = spec_.width;
-  settings_.height = spec_.height;
-  settings_.method = spec_.method->name;
-  settings_.spp = spec_.options.spp();
-  settings_.max_depth = spec_.options.max_depth();
-  settings_.seed = spec_.seed;
-  settings_.restir = restir_options(spec_.options);
+  settings_ = render_settings(spec_);
   decisions_ = decide(*spec_.method, spec_.requested_method, spec_.requested, spec_.options, spec_.encodings, analysis_,
                       measured_layers(spec_.options, spec_.width, spec_.height));
   frame_state_ = scene_->frame_state(0);

@@ -25,4 +25,16 @@ SessionSpec check_create_session(const v1::CreateSessionRequest& req, const Serv
   return spec;
 }
 
+render::RenderSettings render_settings(const SessionSpec& spec) {
+  render::RenderSettings s;
+  s.width = spec.width;
+  s.height = spec.height;
+  s.method = spec.method->name;
+  s.spp = spec.options.spp();
+  s.max_depth = spec.options.max_depth();
+  s.seed = spec.seed;
+  s.restir = restir_options(spec.options);
+  return s;
+}
+
 }  // namespace strata::service

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "render/method_table.h"
+#include "render/renderer.h"
 #include "service/config.h"
 #include "strata/v1/render.pb.h"
 
@@ -26,5 +27,8 @@ struct SessionSpec {
 // that a scene is named; each failure is INVALID_ARGUMENT naming the field. The session id and the
 // scene itself are checked where they are used (the registry, load_scene_source).
 SessionSpec check_create_session(const v1::CreateSessionRequest& req, const ServiceLimits& limits);
+
+// The renderer's settings of a checked session: its resolution, method, effective options and seed.
+render::RenderSettings render_settings(const SessionSpec& spec);
 
 }  // namespace strata::service

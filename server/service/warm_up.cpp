@@ -25,16 +25,7 @@ render::RenderSettings default_settings(const std::string& method, const Service
   req.mutable_resolution()->set_width(k_size);
   req.mutable_resolution()->set_height(k_size);
   req.set_method(method);
-  const SessionSpec spec = check_create_session(req, limits);
-  render::RenderSettings s;
-  s.width = spec.width;
-  s.height = spec.height;
-  s.method = spec.method->name;
-  s.spp = spec.options.spp();
-  s.max_depth = spec.options.max_depth();
-  s.seed = spec.seed;
-  s.restir = restir_options(spec.options);
-  return s;
+  return render_settings(check_create_session(req, limits));
 }
 
 }  // namespace
