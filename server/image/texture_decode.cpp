@@ -1,9 +1,12 @@
 #include "image/texture_decode.h"
 
+#include <algorithm>
 #include <climits>
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <string>
+#include <string_view>
 
 #include <stb_image.h>
 
@@ -109,11 +112,51 @@ Rgba8Image decode_rgba8(std::span<const uint8_t> bytes, uint32_t max_dimension) 
   return out;
 }
 
+// Walks the new-style run-length scanlines of a Radiance HDR image before stb_image decodes it: the
+// stb_image Debian ships loops without end on a run of length 0 (or on data that ends inside a
+// scanline, which it reads as zeros), so such a file is refused here, naming the scanline. Flat and
+// old-style scanlines, which stb reads with a bounded loop, end the walk.
+static void check_hdr_runs(std::span<const uint8_t> bytes, const ImageSize& size) {
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  const size_t blank = text.find("\n\n");
+  if (blank == std::string_view::npos) return;  // stb refuses a header without its blank line
+  const size_t resolution_end = text.find('\n', blank + 2);
+  if (resolution_end == std::string_view::npos) return;
+  size_t at = resolution_end + 1;
+  const uint32_t width = size.width;
+  if (width < 8 || width >= 32768) return;  // stb reads such images flat
+  auto byte = [&](uint32_t row) -> uint32_t {
+    if (at >= bytes.size())
+      throw ImageError("the Radiance HDR image's run-length data ends early (scanline " + std::to_string(row) + ")");
+    return bytes[at++];
+  };
+  for (uint32_t row = 0; row < size.height; ++row) {
+    if (bytes.size() - std::min(at, bytes.size()) < 4) throw ImageError("the Radiance HDR image's run-length data ends early (scanline " + std::to_string(row) + ")");
+    if (bytes[at] != 2 || bytes[at + 1] != 2 || (bytes[at + 2] & 0x80) != 0) return;  // flat from here on
+    if ((uint32_t(bytes[at + 2]) << 8 | bytes[at + 3]) != width) return;  // stb refuses the length itself
+    at += 4;
+    for (int component = 0; component < 4; ++component)
+      for (uint32_t left = width; left > 0;) {
+        uint32_t count = byte(row);
+        const bool run = count > 128;
+        if (run) count -= 128;
+        if (count == 0 || count > left)
+          throw ImageError("the Radiance HDR image has a run of length " + std::to_string(count) + " in scanline " + std::to_string(row) +
+                           " where " + std::to_string(left) + " pixels are left");
+        if (run) byte(row);
+        else
+          for (uint32_t i = 0; i < count; ++i) byte(row);
+        left -= count;
+      }
+  }
+}
+
 Image decode_radiance_hdr(std::span<const uint8_t> bytes, uint32_t max_dimension) {
   if (sniff_format(bytes) != EncodedFormat::kRadianceHdr)
     throw ImageError("not a Radiance HDR image: " + describe_encoded(bytes));
   const ImageSize size = encoded_size(bytes);
   check_dimensions(size, max_dimension);
+  check_hdr_runs(bytes, size);
   int w = 0, h = 0, comp = 0;
   std::unique_ptr<float, StbFree> pixels(stbi_loadf_from_memory(bytes.data(), checked_length(bytes), &w, &h, &comp, 4));
   if (!pixels) throw ImageError("cannot decode the Radiance HDR image: " + failure());
