@@ -93,12 +93,15 @@ ImageSize encoded_size(std::span<const uint8_t> bytes) {
   return {static_cast<uint32_t>(w), static_cast<uint32_t>(h)};
 }
 
+static void check_png_chunks(std::span<const uint8_t> bytes);
+
 Rgba8Image decode_rgba8(std::span<const uint8_t> bytes, uint32_t max_dimension) {
   const EncodedFormat format = sniff_format(bytes);
   if (format != EncodedFormat::kPng && format != EncodedFormat::kJpeg)
     throw ImageError("unsupported image type: " + describe_encoded(bytes) + " (textures are PNG or JPEG)");
   const ImageSize size = encoded_size(bytes);
   check_dimensions(size, max_dimension);
+  if (format == EncodedFormat::kPng) check_png_chunks(bytes);
   int w = 0, h = 0, comp = 0;
   std::unique_ptr<stbi_uc, StbFree> pixels(stbi_load_from_memory(bytes.data(), checked_length(bytes), &w, &h, &comp, 4));
   if (!pixels) throw ImageError("cannot decode the " + describe_encoded(bytes).substr(2) + ": " + failure());
@@ -116,6 +119,22 @@ Rgba8Image decode_rgba8(std::span<const uint8_t> bytes, uint32_t max_dimension) 
 // stb_image Debian ships loops without end on a run of length 0 (or on data that ends inside a
 // scanline, which it reads as zeros), so such a file is refused here, naming the scanline. Flat and
 // old-style scanlines, which stb reads with a bounded loop, end the walk.
+// Every chunk of a PNG must fit in the bytes given: the stb_image Debian ships reserves the length
+// an IDAT chunk claims before reading it, so a few bytes could make it allocate hundreds of MB.
+static void check_png_chunks(std::span<const uint8_t> bytes) {
+  size_t at = 8;  // the signature
+  while (at + 8 <= bytes.size()) {
+    const uint64_t length = uint64_t(bytes[at]) << 24 | uint64_t(bytes[at + 1]) << 16 | uint64_t(bytes[at + 2]) << 8 | bytes[at + 3];
+    const std::string type(reinterpret_cast<const char*>(bytes.data() + at + 4), 4);
+    const uint64_t left = bytes.size() - at;
+    if (12 + length > left)
+      throw ImageError("the PNG's chunk at byte " + std::to_string(at) + " claims " + std::to_string(length) + " bytes where " +
+                       std::to_string(left > 12 ? left - 12 : 0) + " remain");
+    if (type == "IEND") return;
+    at += 12 + length;
+  }
+}
+
 static void check_hdr_runs(std::span<const uint8_t> bytes, const ImageSize& size) {
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   const size_t blank = text.find("\n\n");
