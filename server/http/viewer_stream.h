@@ -26,6 +26,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "http/viewer_messages.h"
 #include "scene/scene.h"
 #include "service/auth_token.h"
 #include "service/frame_input.h"
@@ -48,7 +49,7 @@ class ViewerTransport {
 constexpr size_t k_max_viewer_message = 1 << 20;  // bytes of one message from the page
 
 // The close code for a status: 1000 for OK, else 4000 + the fitting HTTP status.
-int close_code(grpc::StatusCode code);
+
 
 class ViewerStream final : public service::AttachedStream,
                            public service::ScheduledStream,
