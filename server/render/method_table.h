@@ -9,17 +9,11 @@
 
 namespace strata::render {
 
-// The stages a frame can be composed of (docs/ARCHITECTURE.md, "The frame").
+// How a method reuses the previous frame (MethodSpec::temporal; docs/ARCHITECTURE.md, "The frame").
 enum class StageKind {
-  path_trace,       // pt: the reference path tracer
-  primary,          // the visibility buffer: the pixel-centre hit of every pixel
-  domain_init,      // pixel-layer domains: propagation, representative hits, depth ranges, compaction (ML 4.3, 5)
-  initial,          // canonical samples (N_init candidate paths per pixel)
+  path_trace,       // pt: no reuse, the reference path tracer
   temporal_gather,  // the previous reservoir at the backprojected pixel (Lin 2022 section 7)
-  splat_sort,       // previous reservoirs splatted forward and sorted by pixel (RS-supp 3.1), three passes
-  temporal_splat,   // the splats that landed, resampled with the canonical sample (RS-main 4.1)
-  spatial,          // neighbours in a disk (Lin 2022 section 7)
-  shade,            // the last resampling's estimate into the image
+  temporal_splat,   // previous reservoirs splatted forward and sorted by pixel (RS-supp 3.1), then resampled (RS-main 4.1)
 };
 
 struct MethodSpec {

@@ -37,7 +37,6 @@ class SplatSortStage : public Stage {
  public:
   explicit SplatSortStage(const RestirState& state);
   ~SplatSortStage() override;
-  StageKind kind() const override { return StageKind::splat_sort; }
   uint32_t timed_passes() const override { return 3; }
   // history.previous (and the previous frame's deep domain list) -> lists(), splat_offsets.
   void record(const StageFrame& f) override;

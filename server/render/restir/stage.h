@@ -27,7 +27,6 @@ struct StageFrame {
 class Stage {
  public:
   virtual ~Stage() = default;
-  virtual StageKind kind() const = 0;
   // Timed passes it records per frame at most (the renderer's PassTimer is sized by the sum).
   virtual uint32_t timed_passes() const = 0;
   virtual void record(const StageFrame& f) = 0;

@@ -58,7 +58,6 @@ class DomainInitStage : public Stage {
     fill_ = std::make_unique<Pass>(ctx, nullptr, SceneUse{}, "domain_fill", std::move(fill));
   }
 
-  StageKind kind() const override { return StageKind::domain_init; }
   uint32_t timed_passes() const override { return 1; }
 
   void record(const StageFrame& f) override {

@@ -17,7 +17,6 @@ class InitialStage : public Stage {
       deep_ = std::make_unique<Pass>(state.shared.ctx, &state.shared.scene, SceneUse{.lights = true, .history = false}, "restir_initial",
                                      resources(), spec(true));
   }
-  StageKind kind() const override { return StageKind::initial; }
   uint32_t timed_passes() const override { return 1; }
   void record(const StageFrame& f) override {
     timed(f, "initial", [&] {

@@ -15,7 +15,6 @@ class PrimaryStage : public Stage {
         pass_(state.shared.ctx, &state.shared.scene, {.lights = false, .history = false}, "primary",
               {uniform(BINDING_FRAME, state.shared.constants),
                history_current(BINDING_PRIMARY, Access::write, state.visibility)}) {}
-  StageKind kind() const override { return StageKind::primary; }
   uint32_t timed_passes() const override { return 1; }
   void record(const StageFrame& f) override {
     timed(f, "primary", [&] { pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height); });

@@ -18,7 +18,6 @@ class ShadeStage : public Stage {
                storage(BINDING_CONTRIBUTION, Access::read_write, state.contribution),
                storage(BINDING_ACCUM, Access::read_write, state.shared.accum),
                history_current(BINDING_DOMAINS, Access::read, state.domain_ranges)}) {}
-  StageKind kind() const override { return StageKind::shade; }
   uint32_t timed_passes() const override { return 1; }
   void record(const StageFrame& f) override {
     timed(f, "shade", [&] { pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height); });

@@ -63,7 +63,6 @@ class SpatialStage : public Stage {
       list_pass_ = std::make_unique<Pass>(state.shared.ctx, &state.shared.scene, SceneUse{}, "restir_spatial",
                                           resources(Access::read), spatial_spec(true, true, pair_offsets_));
   }
-  StageKind kind() const override { return StageKind::spatial; }
   uint32_t timed_passes() const override { return 1; }
   void record(const StageFrame& f) override {
     timed(f, "spatial", [&] {

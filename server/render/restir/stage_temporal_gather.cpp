@@ -18,7 +18,6 @@ class TemporalGatherStage : public Stage {
                                {history_previous(BINDING_RESERVOIRS_IN, state.history),
                                 history_current(BINDING_PRIMARY, Access::read, state.visibility),
                                 history_previous(BINDING_PRIMARY_PREV, state.visibility)})) {}
-  StageKind kind() const override { return StageKind::temporal_gather; }
   uint32_t timed_passes() const override { return 1; }
   void record(const StageFrame& f) override {
     ran_ = f.frame.history_valid;

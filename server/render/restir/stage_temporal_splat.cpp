@@ -43,7 +43,6 @@ class TemporalSplatStage : public Stage {
     bound_generation_ = sorted_.generation;
   }
 
-  StageKind kind() const override { return StageKind::temporal_splat; }
   uint32_t timed_passes() const override { return 1; }
 
   // The sort's lists, work (canonical samples), visibility.current -> work.
