@@ -28,6 +28,9 @@ std::string viewer_page() {
 <label>render continuously <input id="run" type="checkbox" checked></label>
 <h2>Options</h2>
 <div id="options"></div>
+<div id="overlay-box"><h2>Overlay</h2>
+<label>domain map <input id="overlay" type="checkbox"></label>
+<div id="overlay-legend">red: active domains (brighter = more), green: front layer disoccluded, blue: covered by a splat</div></div>
 <h2>Selection</h2>
 <div id="selection">none (click an object)</div>
 <h2>Camera</h2>

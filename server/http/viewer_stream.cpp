@@ -7,6 +7,7 @@
 #include "http/instance_pick.h"
 #include "http/viewer_messages.h"
 #include "http/viewer_options.h"
+#include "http/viewer_overlay.h"
 #include "render/method_table.h"
 #include "scene/transform.h"
 #include "service/errors.h"
@@ -79,8 +80,9 @@ void ViewerStream::handle(const nlohmann::json& msg) {
   } else if (type == "input") input(msg);
   else if (type == "pick") pick(msg);
   else if (type == "ack") ack(msg);
+  else if (type == "overlay") overlay(msg);
   else if (type == "ping") transport_->send_text(R"({"type":"pong"})");
-  else fail_invalid("type = '" + type + "' is not one of hello, create, attach, input, pick, ack, ping");
+  else fail_invalid("type = '" + type + "' is not one of hello, create, attach, input, pick, ack, overlay, ping");
 }
 
 void ViewerStream::hello(const nlohmann::json& msg) {
@@ -104,6 +106,7 @@ void ViewerStream::hello(const nlohmann::json& msg) {
                           {"device", core_.ctx.device_name()},
                           {"methods", render::available_methods()},
                           {"default_method", render::k_default_method},
+                          {"domain_map_methods", domain_map_methods()},
                           {"scenes", scenes},
                           {"options", viewer_options_json()},
                           {"limits", {{"max_sessions", l.max_sessions}, {"max_dimension", l.max_dimension}, {"max_pixels", l.max_pixels}}}};
@@ -147,6 +150,10 @@ void ViewerStream::attach(const std::string& name, bool owned) {
     camera_ = state_.camera;
     last_sequence_ = 0;
     unacknowledged_.reset();
+    const auto d = s->describe(core_.config);
+    base_encodings_.clear();
+    for (const int e : d.encodings()) base_encodings_.push_back(v1::ImageEncoding(e));
+    domain_map_overlay_ = overlay_changed_ = false;
     message = session_message_locked(s);
   }
   transport_->send_text(message);  // not under mu_: a slow reader must not hold up the frame scheduler
@@ -253,6 +260,20 @@ void ViewerStream::ack(const nlohmann::json& msg) {
   cv_.notify_all();
 }
 
+void ViewerStream::overlay(const nlohmann::json& msg) {
+  if (!msg.contains("domain_map") || !msg["domain_map"].is_boolean())
+    fail_invalid("overlay.domain_map is required (true or false)");
+  const bool on = msg["domain_map"].get<bool>();
+  std::lock_guard lock(mu_);
+  if (!session_) fail(grpc::StatusCode::FAILED_PRECONDITION, "overlay before create or attach: the viewer has no session yet");
+  if (on && !session_->method().layers)
+    fail(grpc::StatusCode::FAILED_PRECONDITION, "overlay.domain_map: the domain map needs a method with pixel layers (" +
+                                                    nlohmann::json(domain_map_methods()).dump() + "); this session renders " +
+                                                    session_->method().name);
+  overlay_changed_ = overlay_changed_ || on != domain_map_overlay_;
+  domain_map_overlay_ = on;
+}
+
 // ---- rendering and sending -----------------------------------------------------------------------
 
 void ViewerStream::render_pending() {
@@ -268,6 +289,15 @@ void ViewerStream::render_pending() {
     pending_.reset();
     options = pending_options_;
     pending_options_ = false;
+    if (overlay_changed_) {  // the session reads the domain map back only for frames whose encodings carry it
+      input->encodings = base_encodings_;
+      if (domain_map_overlay_ && std::find(input->encodings.begin(), input->encodings.end(), v1::IMAGE_ENCODING_DOMAIN_MAP) ==
+                                     input->encodings.end())
+        input->encodings.push_back(v1::IMAGE_ENCODING_DOMAIN_MAP);
+      if (input->encodings.empty()) input->encodings.push_back(v1::IMAGE_ENCODING_EXR_HALF);
+      overlay_changed_ = false;
+      options = true;
+    }
     rendering_ = true;
     s = session_;
     camera = camera_.value_or(state_.camera);
@@ -312,6 +342,7 @@ std::string ViewerStream::frame_message(Frame& f) {
   const auto& r = f.rendered;
   const auto start = std::chrono::steady_clock::now();
   const auto jpeg = encode_jpeg_preview(r.result.image, r.exposure);
+  const auto overlay = domain_map_overlay(r.result.domain_map);
   const double encode_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json passes = nlohmann::json::object();
   for (const auto& p : r.result.stats.pass_ms) passes[p.pass] = passes.value(p.pass, 0.0) + p.ms;
@@ -333,6 +364,7 @@ std::string ViewerStream::frame_message(Frame& f) {
                       {"history_reset", r.history_reset},
                       {"history_reset_reason", r.history_reset_reason},
                       {"camera", camera_json(f.camera)}};
+  if (overlay) h["overlay"] = overlay->header;
   {
     std::lock_guard lock(mu_);
     h["dropped_total"] = dropped_total_;
@@ -344,6 +376,7 @@ std::string ViewerStream::frame_message(Frame& f) {
   for (int i = 0; i < 4; ++i) out[i] = char((n >> (8 * i)) & 0xff);
   out += header;
   out.append(reinterpret_cast<const char*>(jpeg.data()), jpeg.size());
+  if (overlay) out.append(reinterpret_cast<const char*>(overlay->png.data()), overlay->png.size());
   return out;
 }
 

@@ -10,7 +10,9 @@
 //
 // Messages from the page are JSON text; the first must be `hello` (with the token when the daemon
 // has one). Frames are binary: a 4-byte little-endian header length, the header (JSON: frame index,
-// input sequence, pass times, server timings, drops), then the JPEG. Any bad message ends the socket
+// input sequence, pass times, server timings, drops), then the JPEG, then, when the header has
+// `overlay`, the overlay's PNG (http/viewer_overlay.h: the domain map, which the page turns on with
+// an `overlay` message for a method with pixel layers). Any bad message ends the socket
 // with an `error` message naming what was wrong and a close frame whose code says the kind (4000 +
 // the HTTP status that fits: 4400 invalid, 4401 token, 4404 not found, 4409 session taken, 4429 over
 // max_sessions, 4503 draining) and whose reason is the message's start. Closing the socket ends the
@@ -91,6 +93,7 @@ class ViewerStream final : public service::AttachedStream,
   void input(const nlohmann::json& msg);
   void pick(const nlohmann::json& msg);
   void ack(const nlohmann::json& msg);
+  void overlay(const nlohmann::json& msg);
   std::string session_message_locked(const std::shared_ptr<service::Session>& s);  // mu_ held
   void end_session();
   void sender();
@@ -116,6 +119,10 @@ class ViewerStream final : public service::AttachedStream,
   std::optional<uint64_t> unacknowledged_;  // frame index sent, not yet drawn
   bool queued_ = false, rendering_ = false;
   bool accept_inputs_ = true;
+  // The domain-map overlay: the session's own encodings plus DOMAIN_MAP while it is on; a change
+  // goes in with the next input rendered.
+  std::vector<v1::ImageEncoding> base_encodings_;
+  bool domain_map_overlay_ = false, overlay_changed_ = false;
   std::optional<grpc::Status> close_status_;
   bool close_immediate_ = false;
   bool refused_ = false;  // the close frame was sent

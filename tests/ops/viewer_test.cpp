@@ -319,6 +319,74 @@ TEST(ViewerTest, ATokenProtectedDaemonRefusesTheSocketUntilThePageHasTheToken) {
   }, 120s)) << s.dump();
 }
 
+// restir-multilayer's domain map over its frames: the page offers the overlay for a method with
+// pixel layers, turning it on brings frames carrying the map (with disoccluded pixels while the
+// camera strafes) and turning it off ends them; a pt session that asks for it is refused
+// naming the methods that have one.
+TEST(ViewerTest, TheDomainMapOverlayShowsTheLayersOfAMultilayerSessionAndIsRefusedWithoutLayers) {
+  ASSERT_EQ(::access(chromium_path().c_str(), X_OK), 0) << chromium_path() << " is not installed (deploy/install-deps.sh)";
+  TempDir dir;
+  OpsDaemon daemon({"--http", "127.0.0.1:0", "--max-sessions", "3"});
+  const uint32_t size = 32;
+  Chromium browser(chromium_path(), dir.path, 1000, 700);
+  browser.open("http://" + daemon.http_address() + "/view?scene=carousel&method=restir-multilayer&width=" + std::to_string(size) +
+               "&height=" + std::to_string(size));
+  nlohmann::json s;
+  ASSERT_TRUE(wait_until([&] {
+    s = viewer_state(browser);
+    return s.value("state", "") == "streaming" && s.value("frames", 0) >= 1;
+  }, 240s)) << s.dump() << "\n" << browser.log();
+  EXPECT_EQ(browser.evaluate("getComputedStyle(document.getElementById('overlay-box')).display").get<std::string>(), "block");
+  auto overlay = [&] {
+    return nlohmann::json::parse(
+        browser.evaluate("JSON.stringify({on: strataViewer.overlay, drawn: strataViewer.overlayFrames, frames: strataViewer.frames})")
+            .get<std::string>());
+  };
+  EXPECT_TRUE(overlay()["on"].is_null());
+  browser.evaluate("document.getElementById('overlay').click(), true");
+  nlohmann::json o;
+  ASSERT_TRUE(wait_until([&] {
+    o = overlay();
+    return o.value("drawn", 0) >= 2;
+  }, 120s)) << o.dump() << "\n" << browser.log();
+  ASSERT_TRUE(o["on"].is_object()) << o.dump();
+  EXPECT_EQ(o["on"].value("kind", ""), "domain_map");
+  EXPECT_EQ(o["on"].value("width", 0u), size);
+  EXPECT_GE(o["on"].value("layers", 0u), 2u) << o.dump();
+  EXPECT_GT(o["on"].value("bytes", 0u), 0u);
+  const double active = o["on"]["summary"].value("active_domains_mean", 0.0);
+  EXPECT_GT(active, 0.5) << "carousel covers most of the image: its pixels keep their front layer's domain; " << o.dump();
+  EXPECT_LE(active, double(o["on"].value("layers", 0u)));
+  // Strafing uncovers surfaces: some frames show disoccluded front layers.
+  browser.evaluate("document.getElementById('frame').focus(), true");
+  key(browser, "keyDown", "KeyD", "d");
+  double disoccluded = 0.0;
+  wait_until([&] {
+    o = overlay();
+    if (o["on"].is_object()) disoccluded = std::max(disoccluded, o["on"]["summary"].value("disoccluded_share", 0.0));
+    return disoccluded > 0.0;
+  }, 60s);
+  key(browser, "keyUp", "KeyD", "d");
+  EXPECT_GT(disoccluded, 0.0) << o.dump();
+  // Off again: the frames stop carrying the map.
+  browser.evaluate("document.getElementById('overlay').click(), true");
+  const int frames_off = overlay().value("frames", 0);
+  EXPECT_TRUE(wait_until([&] {
+    o = overlay();
+    return o.value("frames", 0) >= frames_off + 2 && o["on"].is_null();
+  }, 120s)) << o.dump();
+
+  // A pt session has no layers: asking for its domain map closes the socket naming the methods with one.
+  browser.evaluate(k_probe_js);
+  browser.evaluate("probe('pt', [" + k_hello.dump() + "," + create("carousel", 16, "pt").dump() + ", {type: 'overlay', domain_map: true}])");
+  const auto p = wait_probe_closed(browser, "pt");
+  EXPECT_EQ(p.value("code", 0), 4400) << p.dump();
+  EXPECT_NE(p.value("reason", "").find("pixel layers"), std::string::npos) << p.dump();
+  // The viewer's own session goes on.
+  const int frames_now = viewer_state(browser).value("frames", 0);
+  EXPECT_TRUE(wait_until([&] { return viewer_state(browser).value("frames", 0) > frames_now; }, 60s));
+}
+
 // Not part of the suite (--gtest_also_run_disabled_tests): input-to-frame latency through the
 // viewer at 256x256 for pt and restir-gather while A and D are held in turn (the camera sways in
 // front of the scene), and the server's JPEG encode time and size, for docs/BENCHMARKS.md.

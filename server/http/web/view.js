@@ -9,12 +9,12 @@
   const v = {
     state: 'connecting', frames: 0, dropped: 0, coalesced: 0, lastFrame: null, error: '', closeCode: 0, closeReason: '',
     session: null, hello: null, selected: null, lastPick: null, latencies: [], frameTimes: [], fps: 0, frameHash: 0,
-    camera: null, cameraSent: null, transforms: {}, lods: {},
+    camera: null, cameraSent: null, transforms: {}, lods: {}, overlay: null, overlayFrames: 0,
   };
   window.strataViewer = v;
   let ws = null, sequence = 0, lastFrameInput = 0, running = true;
   const sentAt = new Map();
-  let cameraDirty = false, pendingOptions = {}, pendingTransforms = {}, pendingLods = {};
+  let cameraDirty = false, overlayDirty = false, pendingOptions = {}, pendingTransforms = {}, pendingLods = {};
   const ackDelayMs = Number(params.get('ack_delay_ms') || 0);  // emulates a slow viewer (tests)
 
   function report() {
@@ -170,9 +170,10 @@
   function sendInput(force) {
     if (!v.session || v.state !== 'streaming') return;
     const outstanding = sequence - lastFrameInput;
-    const dirty = cameraDirty || Object.keys(pendingOptions).length || Object.keys(pendingTransforms).length || Object.keys(pendingLods).length;
+    const dirty = cameraDirty || overlayDirty || Object.keys(pendingOptions).length || Object.keys(pendingTransforms).length || Object.keys(pendingLods).length;
     if (!(dirty && outstanding < 2) && !(force && outstanding === 0)) return;
     const input = { sequence: ++sequence };
+    overlayDirty = false;  // the overlay message went first; this input renders a frame with it
     if (cameraDirty) { input.camera = cameraMessage(); v.cameraSent = input.camera; cameraDirty = false; }
     if (Object.keys(pendingOptions).length) { input.options = pendingOptions; pendingOptions = {}; }
     const ts = Object.values(pendingTransforms);
@@ -197,7 +198,11 @@
   async function onFrame(buffer) {
     const n = new DataView(buffer).getUint32(0, true);
     const h = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 4, n)));
-    const bitmap = await createImageBitmap(new Blob([new Uint8Array(buffer, 4 + n)], { type: 'image/jpeg' }));
+    const jpeg = new Uint8Array(buffer, 4 + n, h.jpeg_bytes);
+    const bitmap = await createImageBitmap(new Blob([jpeg], { type: 'image/jpeg' }));
+    const overlay = h.overlay && $('overlay').checked
+      ? await createImageBitmap(new Blob([new Uint8Array(buffer, 4 + n + h.jpeg_bytes, h.overlay.bytes)], { type: 'image/png' }))
+      : null;
     if (canvas.width !== h.width || canvas.height !== h.height || !fitted) {
       canvas.width = h.width; canvas.height = h.height;
       canvas.classList.toggle('small', h.width < 512);
@@ -206,6 +211,14 @@
     }
     ctx2d.drawImage(bitmap, 0, 0);
     bitmap.close();
+    if (overlay) {  // the domain map over the frame (server/http/viewer_overlay.h)
+      ctx2d.globalAlpha = 0.6;
+      ctx2d.drawImage(overlay, 0, 0);
+      ctx2d.globalAlpha = 1;
+      overlay.close();
+      v.overlayFrames += 1;
+    }
+    v.overlay = h.overlay || null;
     const now = performance.now();
     v.frames += 1;
     v.lastFrame = h;
@@ -220,7 +233,6 @@
     v.frameTimes.push(now);
     while (v.frameTimes.length && now - v.frameTimes[0] > 2000) v.frameTimes.shift();
     v.fps = v.frameTimes.length > 1 ? (v.frameTimes.length - 1) * 1000 / (now - v.frameTimes[0]) : 0;
-    const jpeg = new Uint8Array(buffer, 4 + n);
     let hash = 0;
     for (let i = 0; i < jpeg.length; ++i) hash = (hash * 31 + jpeg[i]) >>> 0;
     v.frameHash = hash;  // tells frames apart (tests)
@@ -239,6 +251,8 @@
       `JPEG ${h.encode_ms.toFixed(2)} ms  ${(h.jpeg_bytes / 1024).toFixed(1)} KiB\n` +
       `input-to-frame p50 ${percentile(v.latencies, 0.5).toFixed(0)} ms  p95 ${percentile(v.latencies, 0.95).toFixed(0)} ms\n` +
       `dropped ${h.dropped_total}  coalesced ${v.coalesced}` + (h.history_reset ? `\nreset: ${h.history_reset_reason}` : '') +
+      (h.overlay ? `\ndomains ${h.overlay.summary.active_domains_mean.toFixed(2)}/px  disoccluded ${(100 * h.overlay.summary.disoccluded_share).toFixed(1)}%` +
+                   `  covered ${(100 * h.overlay.summary.covered_share_of_disoccluded).toFixed(0)}% of them` : '') +
       `\n${passes}`;
   }
   let chart = null, fitted = false;
@@ -336,6 +350,8 @@
         sequence = 0; lastFrameInput = 0; sentAt.clear();
         setCamera(m.camera);
         buildOptions(); showDecisions(m.session); updateSelection(); showMessage('');
+        $('overlay-box').style.display = v.hello.domain_map_methods.includes(m.session.method) ? 'block' : 'none';
+        $('overlay').checked = false;
         status(`${m.session.name}: ${m.session.scene}, ${m.session.method}`);
         report();
         sendInput(true);
@@ -366,6 +382,10 @@
   });
   $('start').addEventListener('click', () => { v.error = ''; showMessage(''); createSession(); });
   $('run').addEventListener('change', () => { running = $('run').checked; });
+  $('overlay').addEventListener('change', () => {
+    send({ type: 'overlay', domain_map: $('overlay').checked });
+    overlayDirty = true;
+  });
   $('speed').addEventListener('change', () => { cam.speed = Math.max(0.001, Number($('speed').value)); });
   function fit() {
     const stage = $('stage').getBoundingClientRect();
