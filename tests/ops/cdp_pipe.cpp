@@ -36,7 +36,9 @@ std::string base64_decode(const std::string& text) {
   return out;
 }
 
-Chromium::Chromium(const std::string& chromium, const std::filesystem::path& dir, int width, int height) : dir_(dir) {
+Chromium::Chromium(const std::string& chromium, const std::filesystem::path& dir, int width, int height,
+                   const std::vector<std::string>& extra_args)
+    : dir_(dir) {
   ::signal(SIGPIPE, SIG_IGN);  // a browser that died must fail the test, not kill it
   int in[2], out[2];
   if (::pipe(in) != 0 || ::pipe(out) != 0) throw std::runtime_error("pipe failed");
@@ -48,7 +50,9 @@ Chromium::Chromium(const std::string& chromium, const std::filesystem::path& dir
                                    "--user-data-dir=" + (dir / "profile").string(),
                                    "--window-size=" + std::to_string(width) + "," + std::to_string(height),
                                    // Nothing resolves but loopback: a page that needed the network would break.
-                                   "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1", "about:blank"};
+                                   "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1"};
+  args.insert(args.end(), extra_args.begin(), extra_args.end());
+  args.push_back("about:blank");
   pid_ = ::fork();
   if (pid_ == 0) {
     // Out of the way of 3 and 4 first, then into place.

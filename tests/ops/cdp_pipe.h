@@ -18,7 +18,9 @@ namespace strata::test {
 class Chromium {
  public:
   // Starts `chromium` headless with a fresh profile in `dir`; its log goes to dir/chromium.log.
-  Chromium(const std::string& chromium, const std::filesystem::path& dir, int width, int height);
+  // `extra_args` go on its command line (e.g. --ignore-certificate-errors for a test's own certificate).
+  Chromium(const std::string& chromium, const std::filesystem::path& dir, int width, int height,
+           const std::vector<std::string>& extra_args = {});
   ~Chromium();
   Chromium(const Chromium&) = delete;
   Chromium& operator=(const Chromium&) = delete;
