@@ -1,7 +1,9 @@
 // The material model: glTF metallic-roughness as a Lambert lobe plus a GGX microfacet lobe.
 //   f = diffuse / pi + D G2 F / (4 cos_o cos_i)
-// with F0 = mix(0.04 * specular, base, metallic) and diffuse = base (1 - metallic)(1 - 0.04 specular).
-// D: GGX (Trowbridge-Reitz), G2: height-correlated Smith (Heitz 2014), F: Schlick.
+// with F = F0 + (F90 - F0)(1 - wo.h)^5 (Schlick), F0 = mix(0.04 specular, base, metallic) and
+// F90 = mix(specular, 1, metallic): KHR_materials_specular scales the whole dielectric Fresnel term
+// by its factor, so a factor of 0 leaves no specular lobe at any angle; diffuse = base (1 -
+// metallic)(1 - 0.04 specular). D: GGX (Trowbridge-Reitz), G2: height-correlated Smith (Heitz 2014).
 // Sampling: one lobe chosen by its Fresnel-weighted albedo; GGX by visible normals (Heitz 2018).
 // Everything is in the local shading frame (normal = +z); callers orient the frame towards wo.
 #ifndef STRATA_BSDF_H
@@ -16,6 +18,7 @@ CONST_DEF float GGX_ALPHA_MIN = 1e-3f;  // below this the lobe is treated as thi
 struct BsdfParams {
   vec3 diffuse;   // Lambert albedo
   vec3 f0;        // specular reflectance at normal incidence
+  float f90;      // specular reflectance at grazing incidence
   float alpha;    // GGX alpha = roughness^2, clamped to GGX_ALPHA_MIN
 };
 
@@ -23,6 +26,7 @@ INLINE BsdfParams make_bsdf(vec3 base_color, float metallic, float roughness, fl
   BsdfParams p;
   float dielectric_f0 = 0.04f * specular;
   p.f0 = mix(vec3(dielectric_f0), base_color, metallic);
+  p.f90 = mix(specular, 1.0f, metallic);
   p.diffuse = base_color * (1.0f - metallic) * (1.0f - dielectric_f0);
   p.alpha = max(roughness * roughness, GGX_ALPHA_MIN);
   return p;
@@ -30,10 +34,10 @@ INLINE BsdfParams make_bsdf(vec3 base_color, float metallic, float roughness, fl
 
 INLINE float luminance(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }
 
-INLINE vec3 fresnel_schlick(vec3 f0, float cos_theta) {
+INLINE vec3 fresnel_schlick(vec3 f0, float f90, float cos_theta) {
   float m = clamp(1.0f - cos_theta, 0.0f, 1.0f);
   float m2 = m * m;
-  return f0 + (vec3(1.0f) - f0) * (m2 * m2 * m);
+  return f0 + (vec3(f90) - f0) * (m2 * m2 * m);
 }
 
 INLINE float ggx_d(float alpha, float cos_h) {
@@ -51,7 +55,7 @@ INLINE float ggx_lambda(float alpha, float cos_theta) {
 
 // Probability of sampling the GGX lobe; the diffuse lobe gets the rest.
 INLINE float bsdf_specular_probability(BsdfParams p, float cos_o) {
-  float ws = luminance(fresnel_schlick(p.f0, cos_o));
+  float ws = luminance(fresnel_schlick(p.f0, p.f90, cos_o));
   float wd = luminance(p.diffuse);
   if (!(ws + wd > 0.0f)) return 0.0f;
   return ws / (ws + wd);
@@ -64,7 +68,7 @@ INLINE vec3 bsdf_eval_cos(BsdfParams p, vec3 wo, vec3 wi) {
   vec3 h = normalize(wo + wi);
   float d = ggx_d(p.alpha, h.z);
   float g2 = 1.0f / (1.0f + ggx_lambda(p.alpha, wo.z) + ggx_lambda(p.alpha, wi.z));
-  vec3 f = fresnel_schlick(p.f0, max(dot(wo, h), 0.0f));
+  vec3 f = fresnel_schlick(p.f0, p.f90, max(dot(wo, h), 0.0f));
   result += f * (d * g2 / (4.0f * wo.z));
   return result;
 }

@@ -120,6 +120,13 @@ TEST(SamplingBsdf, LambertOnlyWhenNoSpecular) {
   EXPECT_NEAR(f.g, 0.25f / PI * wi.z, 1e-6f);
   EXPECT_NEAR(bsdf_pdf(p, wo, wi), wi.z / PI, 1e-6f);
   EXPECT_EQ(bsdf_eval_cos(p, wo, vec3(0, 0, -1)), vec3(0.0f));
+  // At grazing angles too: KHR_materials_specular's factor scales F90 as well as F0, so Schlick's
+  // (1 - wo.h)^5 term adds nothing (with F90 = 1 it would add a rough highlight of about 0.2 / pi here).
+  vec3 grazing_o = normalize(vec3(0.99f, 0.0f, 0.1f));
+  vec3 grazing_i = normalize(vec3(-0.97f, 0.1f, 0.2f));
+  vec3 g = bsdf_eval_cos(p, grazing_o, grazing_i);
+  EXPECT_NEAR(g.r, 0.5f / PI * grazing_i.z, 1e-6f);
+  EXPECT_NEAR(g.b, 1.0f / PI * grazing_i.z, 1e-6f);
 }
 
 TEST(SamplingBsdf, PdfIntegratesToOneAndEnergyIsConserved) {
