@@ -12,5 +12,6 @@ Scene make_chess();
 Scene make_foliage();
 Scene make_overlap_uv();
 Scene make_stiff();
+Scene make_lod_bounce();
 
 }  // namespace strata::scene::builtin

@@ -11,7 +11,7 @@ namespace {
 
 using Generator = Scene (*)();
 // The order is the order builtin_scene_names() reports; cornell, the default, comes first.
-constexpr std::array<std::pair<const char*, Generator>, 8> kBuiltins = {{
+constexpr std::array<std::pair<const char*, Generator>, 9> kBuiltins = {{
     {"cornell", builtin::make_cornell},
     {"carousel", builtin::make_carousel},
     {"carousel-bounce", builtin::make_carousel_bounce},
@@ -20,6 +20,7 @@ constexpr std::array<std::pair<const char*, Generator>, 8> kBuiltins = {{
     {"foliage", builtin::make_foliage},
     {"overlap-uv", builtin::make_overlap_uv},
     {"stiff", builtin::make_stiff},
+    {"lod-bounce", builtin::make_lod_bounce},
 }};
 
 }  // namespace
