@@ -75,7 +75,7 @@ Blas::Blas(const Context& ctx, std::span<const BlasTriangles> geometries) {
   for (const auto& g : geometries) {
     VkAccelerationStructureGeometryKHR geom{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
     geom.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
-    geom.flags = VK_GEOMETRY_OPAQUE_BIT_KHR;
+    geom.flags = g.opaque ? VkGeometryFlagsKHR(VK_GEOMETRY_OPAQUE_BIT_KHR) : VkGeometryFlagsKHR(0);
     auto& tri = geom.geometry.triangles;
     tri.sType = VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR;
     tri.vertexFormat = VK_FORMAT_R32G32B32_SFLOAT;

@@ -15,6 +15,9 @@ struct BlasTriangles {
   uint32_t vertex_stride = 0;
   VkDeviceAddress indices = 0;   // uint32 triangle list
   uint32_t triangle_count = 0;
+  // Off for alpha-tested primitives (alphaMode MASK or BLEND): their triangles are reported to a ray
+  // query as candidates, which the scene bridge confirms after the alpha test.
+  bool opaque = true;
 };
 
 class AccelerationStructure {

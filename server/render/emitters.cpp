@@ -4,6 +4,8 @@
 #include <cstring>
 #include <numeric>
 
+#include "render/scene_textures.h"
+
 namespace strata::render {
 
 std::vector<gpu::GpuAliasEntry> build_alias_table(std::span<const double> weights) {
@@ -51,12 +53,16 @@ EmitterTable build_emitter_table(const scene::Scene& scene, const scene::FrameSt
     for (size_t g = 0; g < mesh.primitives.size(); ++g) {
       const auto& prim = mesh.primitives[g];
       const auto& mat = scene.materials[prim.material];
-      double lum = 0.2126 * mat.emission.r + 0.7152 * mat.emission.g + 0.0722 * mat.emission.b;
-      if (!(lum > 0.0)) continue;
+      double material_lum = 0.2126 * mat.emission.r + 0.7152 * mat.emission.g + 0.0722 * mat.emission.b;
+      if (!(material_lum > 0.0)) continue;
       uint32_t flags = mat.double_sided ? gpu::MATERIAL_DOUBLE_SIDED : 0u;
       float flag_bits;
       std::memcpy(&flag_bits, &flags, sizeof flags);
       for (size_t tri = 0; tri < prim.triangle_count(); ++tri) {
+        // An emissive texture's triangles are selected by their integrated texture (render/scene_textures.h).
+        const glm::vec3 emission = triangle_light_emission(scene, prim, tri);
+        const double lum = 0.2126 * emission.r + 0.7152 * emission.g + 0.0722 * emission.b;
+        if (!(lum > 0.0)) continue;
         glm::vec3 p[3];
         for (int k = 0; k < 3; ++k) p[k] = glm::vec3(m * glm::vec4(prim.positions[prim.indices[3 * tri + size_t(k)]], 1.0f));
         if (mirrored) std::swap(p[1], p[2]);
@@ -64,7 +70,7 @@ EmitterTable build_emitter_table(const scene::Scene& scene, const scene::FrameSt
         if (!(area > 0.0f) || !std::isfinite(area)) continue;  // degenerate: cannot be sampled by area
         double w = lum * double(area) * (mat.double_sided ? 2.0 : 1.0);
         t.emitters.push_back({glm::vec4(p[0], area), glm::vec4(p[1], 0.0f), glm::vec4(p[2], flag_bits),
-                              glm::vec4(mat.emission, 0.0f),
+                              glm::vec4(emission, 0.0f),
                               glm::uvec4(uint32_t(i), uint32_t(g), uint32_t(tri), mirrored ? 1u : 0u)});
         power.push_back(w);
         t.total_power += w;

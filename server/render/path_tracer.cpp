@@ -8,8 +8,8 @@
 namespace strata::render {
 namespace {
 
-std::vector<gpu::Binding> path_trace_bindings() {
-  auto b = GpuScene::bindings(/*with_lights=*/true);
+std::vector<gpu::Binding> path_trace_bindings(const GpuScene& scene) {
+  auto b = scene.bindings(/*with_lights=*/true);
   b.push_back({BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER});
   b.push_back({BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   b.push_back({BINDING_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
@@ -24,17 +24,20 @@ struct Features {
   }
 };
 
+std::vector<gpu::SpecConstant> spec(const GpuScene& scene, Features f) {
+  std::vector<gpu::SpecConstant> s{{SPEC_THIN_LENS, f.thin_lens}, {SPEC_ENV_NEE, f.env_nee}, {SPEC_EMITTERS, f.emitters},
+                                   {SPEC_MOTION_BLUR, f.motion_blur}};
+  scene.add_spec(s);
+  return s;
+}
+
 }  // namespace
 
 struct PathTracer::Variant {
   gpu::ComputePipeline pipeline;
   gpu::DescriptorSet set;
   Variant(const SharedResources& s, Features f)
-      : pipeline(s.ctx, "path_trace", path_trace_bindings(),
-                 std::vector<gpu::SpecConstant>{{SPEC_THIN_LENS, f.thin_lens},
-                                                {SPEC_ENV_NEE, f.env_nee},
-                                                {SPEC_EMITTERS, f.emitters},
-                                                {SPEC_MOTION_BLUR, f.motion_blur}},
+      : pipeline(s.ctx, s.scene.shader("path_trace"), path_trace_bindings(s.scene), spec(s.scene, f),
                  sizeof(gpu::GpuDispatchConstants)),
         set(s.ctx, pipeline) {
     s.scene.bind(set, /*with_lights=*/true);

@@ -10,10 +10,12 @@ RayBenchmark::RayBenchmark(const gpu::Context& ctx, const scene::Scene& scene, u
   gpu_scene_ = std::make_unique<GpuScene>(ctx, scene);
   constants_ = gpu::Buffer(ctx, sizeof(gpu::GpuFrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::Memory::Host, "frame constants");
   counters_ = gpu::Buffer(ctx, sizeof(uint32_t) * gpu::COUNTER_COUNT, gpu::k_storage_usage, gpu::Memory::Device, "counters");
-  auto bindings = GpuScene::bindings(/*with_lights=*/false);
+  auto bindings = gpu_scene_->bindings(/*with_lights=*/false);
   bindings.push_back({BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER});
   bindings.push_back({BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-  pipeline_ = std::make_unique<gpu::ComputePipeline>(ctx, "ray_throughput", bindings, std::span<const gpu::SpecConstant>{},
+  std::vector<gpu::SpecConstant> spec;
+  gpu_scene_->add_spec(spec);
+  pipeline_ = std::make_unique<gpu::ComputePipeline>(ctx, gpu_scene_->shader("ray_throughput"), bindings, spec,
                                                      uint32_t(sizeof(gpu::GpuDispatchConstants)));
   set_ = std::make_unique<gpu::DescriptorSet>(ctx, *pipeline_);
   gpu_scene_->bind(*set_, /*with_lights=*/false);

@@ -9,8 +9,8 @@ namespace strata::render {
 namespace {
 
 // The scene bindings with history (the shader reads the instance records of the slot it traces).
-std::vector<gpu::Binding> probe_bindings() {
-  auto b = GpuScene::bindings(/*with_lights=*/false, /*with_history=*/true);
+std::vector<gpu::Binding> probe_bindings(const GpuScene& scene) {
+  auto b = scene.bindings(/*with_lights=*/false, /*with_history=*/true);
   b.push_back({BINDING_PROBE_RAYS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   b.push_back({BINDING_PROBE_HITS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   return b;
@@ -30,8 +30,9 @@ std::vector<gpu::GpuProbeHit> RayProbe::trace(const scene::FrameState& frame, st
   if (previous && !gpu_scene_->keeps_history()) throw std::logic_error("RayProbe: the previous slot needs keep_history");
   auto& pipeline = pipelines_[previous ? 1 : 0];
   if (!pipeline) {
-    const gpu::SpecConstant spec[] = {{PROBE_SPEC_PREVIOUS, previous ? VK_TRUE : VK_FALSE}};
-    pipeline = std::make_unique<gpu::ComputePipeline>(ctx_, "ray_probe", probe_bindings(), spec,
+    std::vector<gpu::SpecConstant> spec = {{PROBE_SPEC_PREVIOUS, previous ? VK_TRUE : VK_FALSE}};
+    gpu_scene_->add_spec(spec);
+    pipeline = std::make_unique<gpu::ComputePipeline>(ctx_, gpu_scene_->shader("ray_probe"), probe_bindings(*gpu_scene_), spec,
                                                       uint32_t(sizeof(gpu::GpuDispatchConstants)));
   }
   gpu::Buffer ray_buf(ctx_, sizeof(gpu::GpuProbeRay) * rays.size(), gpu::k_storage_usage, gpu::Memory::Host, "probe rays");

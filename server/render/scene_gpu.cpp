@@ -18,6 +18,7 @@ constexpr VkBufferUsageFlags k_geometry_usage =
 
 GpuScene::GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep_history) : ctx_(ctx), scene_(scene) {
   scene.validate();
+  if (SceneTextures::needed(scene)) textures_ = std::make_unique<SceneTextures>(ctx, scene);
   upload_geometry();
   slots_.resize(keep_history ? 2 : 1);
   for (auto& slot : slots_) {
@@ -62,7 +63,10 @@ void GpuScene::upload_geometry() {
   std::vector<gpu::GpuVertex> vertices;
   std::vector<uint32_t> indices;
   std::vector<gpu::GpuPrimitive> prims;
-  struct Range { uint32_t vertex_offset, vertex_count, index_offset, triangle_count; };
+  struct Range {
+    uint32_t vertex_offset, vertex_count, index_offset, triangle_count;
+    bool opaque;
+  };
   std::vector<std::vector<Range>> ranges(scene_.meshes.size());
   for (size_t m = 0; m < scene_.meshes.size(); ++m) {
     mesh_primitive_base_.push_back(uint32_t(prims.size()));
@@ -73,7 +77,8 @@ void GpuScene::upload_geometry() {
         lo = glm::min(lo, x);
         hi = glm::max(hi, x);
       }
-      Range r{uint32_t(vertices.size()), uint32_t(p.positions.size()), uint32_t(indices.size()), uint32_t(p.triangle_count())};
+      Range r{uint32_t(vertices.size()), uint32_t(p.positions.size()), uint32_t(indices.size()), uint32_t(p.triangle_count()), true};
+      r.opaque = !SceneTextures::alpha_tested(scene_.materials[p.material]);
       for (size_t v = 0; v < p.positions.size(); ++v)
         vertices.push_back({glm::vec4(p.positions[v], p.uvs[v].x), glm::vec4(p.normals[v], p.uvs[v].y)});
       indices.insert(indices.end(), p.indices.begin(), p.indices.end());
@@ -97,7 +102,7 @@ void GpuScene::upload_geometry() {
     for (const auto& r : ranges[m]) {
       geoms.push_back({vertices_.address() + VkDeviceAddress(r.vertex_offset) * sizeof(gpu::GpuVertex), r.vertex_count,
                        uint32_t(sizeof(gpu::GpuVertex)), indices_.address() + VkDeviceAddress(r.index_offset) * sizeof(uint32_t),
-                       r.triangle_count});
+                       r.triangle_count, r.opaque});
     }
     blas_.emplace_back(ctx_, geoms);
   }
@@ -240,7 +245,7 @@ uint32_t GpuScene::tlas_refits() const {
   return n;
 }
 
-std::vector<gpu::Binding> GpuScene::bindings(bool with_lights, bool with_history) {
+std::vector<gpu::Binding> GpuScene::bindings(bool with_lights, bool with_history) const {
   std::vector<gpu::Binding> b = {
       {BINDING_TLAS, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR},
       {BINDING_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -260,6 +265,7 @@ std::vector<gpu::Binding> GpuScene::bindings(bool with_lights, bool with_history
     b.push_back({BINDING_LOD_UV, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR});
     b.push_back({BINDING_LOD_TABLE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   }
+  if (textures_) SceneTextures::add_bindings(b);
   return b;
 }
 
@@ -288,6 +294,7 @@ void GpuScene::bind(gpu::DescriptorSet& set, bool with_lights, bool with_history
     set.bind_tlas(BINDING_LOD_UV, lod_uv_ ? lod_uv_->tlas().handle() : current.tlas->handle());
     set.bind_buffer(BINDING_LOD_TABLE, lod_uv_ ? lod_uv_->table() : lod_off_table_);
   }
+  if (textures_) textures_->bind(set);
 }
 
 void GpuScene::set_lod_mapping(const LodMappingSettings& s) {
@@ -306,6 +313,7 @@ SceneMemory GpuScene::memory() const {
     m.history += slots_[i].tlas->bytes() + slots_[i].tlas->scratch_bytes() + slots_[i].instances.size();
   if (keeps_history()) m.history += swept_.size() + lod_off_table_.size();
   if (lod_uv_) m.lod_uv = lod_uv_->bytes();
+  if (textures_) m.textures = textures_->bytes();
   return m;
 }
 

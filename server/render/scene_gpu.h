@@ -8,15 +8,18 @@
 #include <algorithm>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "gpu/accel.h"
 #include "gpu/buffer.h"
 #include "gpu/pipeline.h"
+#include "include/bindings.h"
 #include "include/frame_data.h"
 #include "include/scene_data.h"
 #include "render/emitters.h"
 #include "render/lod_uv_space.h"
+#include "render/scene_textures.h"
 #include "scene/scene.h"
 
 namespace strata::render {
@@ -27,6 +30,7 @@ struct SceneMemory {
   VkDeviceSize per_frame = 0;      // instances, emitters, alias table
   VkDeviceSize history = 0;        // the previous frame's slot: second TLAS, its scratch, instances
   VkDeviceSize lod_uv = 0;         // LoD-aware reuse: UV BLASes, UV TLAS, LoD table (scenes with LoD groups, with history)
+  VkDeviceSize textures = 0;       // texels, texture and level tables, material texture records, vertex extras (textured scenes)
 };
 
 class GpuScene {
@@ -43,8 +47,19 @@ class GpuScene {
   const scene::Scene& scene() const { return scene_; }
   // The descriptor bindings of the scene bridge (shaders/include/scene_bridge.glsl), plus the
   // emitter tables of light sampling when `with_lights`, plus BINDING_TLAS_PREV and
-  // BINDING_INSTANCES_PREV when `with_history`; bind() fills them in a set.
-  static std::vector<gpu::Binding> bindings(bool with_lights, bool with_history = false);
+  // BINDING_INSTANCES_PREV when `with_history`, plus the textures of a textured scene; bind()
+  // fills them in a set.
+  std::vector<gpu::Binding> bindings(bool with_lights, bool with_history = false) const;
+  // Textures and alpha-tested materials (render/scene_textures.h): a scene that has them runs the
+  // textured variant of every pass that reads the scene (`shader(name)`: name + "_textured",
+  // compiled with STRATA_TEXTURES), with SPEC_ALPHA_TEST on when some material is alpha-tested
+  // (`add_spec`); any other scene runs the plain passes and binds none of it.
+  bool textured() const { return textures_ != nullptr; }
+  bool alpha_tested() const { return textures_ && textures_->any_alpha_tested(); }
+  std::string shader(const char* name) const { return textured() ? std::string(name) + "_textured" : std::string(name); }
+  void add_spec(std::vector<gpu::SpecConstant>& spec) const {
+    if (alpha_tested()) spec.push_back({SPEC_ALPHA_TEST, VK_TRUE});
+  }
   // LoD-aware reuse (with history): the session's options, read by the next frame's passes. The
   // UV-space structure exists only for scenes with LoD groups (render/lod_uv_space.h).
   void set_lod_mapping(const LodMappingSettings& s);
@@ -126,6 +141,7 @@ class GpuScene {
   std::vector<std::pair<glm::vec3, glm::vec3>> mesh_bounds_;  // per mesh: object-space lower and upper corner
   gpu::Buffer swept_;                           // GpuSweptBoxes (with history)
   std::unique_ptr<LodUvSpace> lod_uv_;          // with history, for scenes with LoD groups
+  std::unique_ptr<SceneTextures> textures_;     // scenes with textures or alpha-tested materials
   gpu::Buffer lod_off_table_;                   // with history, without LoD groups: a header that says "off"
   bool lod_mapping_on_ = false;
   std::vector<Slot> slots_;                     // 1, or 2 with history

@@ -6,33 +6,11 @@ namespace strata::scene {
 
 std::vector<std::string> unrendered_features(const Scene& scene) {
   std::vector<std::string> out = scene.ignored_features;
-  // Textures and alpha modes are in the scene model (Scene::textures, Material); the renderer
-  // does not sample them yet.
-  struct Slot {
-    const char* name;
-    TextureRef Material::*ref;
-  };
-  constexpr Slot kSlots[] = {{"baseColorTexture", &Material::base_color_texture},
-                             {"metallicRoughnessTexture", &Material::metallic_roughness_texture},
-                             {"normalTexture", &Material::normal_texture},
-                             {"emissiveTexture", &Material::emissive_texture}};
-  for (const Slot& slot : kSlots) {
-    size_t count = 0;
-    for (const Material& m : scene.materials) count += (m.*slot.ref).texture >= 0 ? 1 : 0;
-    if (count > 0) {
-      out.push_back(std::string(slot.name) + " on " + gltf::count_of(count, "material") +
-                    " (textures are decoded but not yet sampled)");
-    }
-  }
-  size_t masked = 0, blended = 0;
-  for (const Material& m : scene.materials) {
-    masked += m.alpha_mode == AlphaMode::kMask ? 1 : 0;
-    blended += m.alpha_mode == AlphaMode::kBlend ? 1 : 0;
-  }
-  if (masked > 0)
-    out.push_back("alphaMode MASK on " + gltf::count_of(masked, "material") + " (rendered opaque: not yet alpha-tested)");
+  // Textures are sampled and MASK is alpha-tested (render/scene_textures.h); BLEND is approximated.
+  size_t blended = 0;
+  for (const Material& m : scene.materials) blended += m.alpha_mode == AlphaMode::kBlend ? 1 : 0;
   if (blended > 0)
-    out.push_back("alphaMode BLEND on " + gltf::count_of(blended, "material") + " (rendered opaque)");
+    out.push_back("alphaMode BLEND on " + gltf::count_of(blended, "material") + " (rendered as MASK at alpha cutoff 0.5)");
   if (!scene.lights.empty()) {
     out.push_back("KHR_lights_punctual: " + gltf::count_of(scene.lights.size(), "light") +
                   " (loaded, not yet rendered)");

@@ -46,6 +46,14 @@
 // LoD-aware reuse (with history; restir/lod_mapping.h, render/lod_uv_space.h)
 #define BINDING_LOD_UV 36          // the UV-space TLAS: every LoD level's triangles at their UVs, a plane per instance
 #define BINDING_LOD_TABLE 37       // GpuLodHeader, then a GpuLodInstance per instance
+// Textures and alpha-tested materials (passes' textured variants, compiled with STRATA_TEXTURES;
+// include/texture_data.h, include/textures.glsl): bound only for scenes that have them.
+#define BINDING_MATERIAL_TEXTURES 40  // per material: GpuMaterialTextures
+#define BINDING_TEXTURES 41           // per texture: GpuTexture
+#define BINDING_TEXTURE_LEVELS 42     // GpuMipLevel of every image's chain
+#define BINDING_TEXELS 43             // RGBA8 texels of every level
+#define BINDING_VERTEX_EXTRAS 44      // per vertex: GpuVertexExtra (tangent, TEXCOORD_1), or one unused record
+#define BINDING_LIGHT_EMISSION 45     // per triangle (index array / 3): the emission NEE selects it by (scenes with emissive textures)
 
 // Specialization constants of the passes (constant_id).
 #define SPEC_THIN_LENS 0
@@ -58,6 +66,7 @@
 #define SPEC_DOMAIN_LIST 7      // this dispatch runs a list of active deep domains (initial, splat_resample: this frame's; domain_propagate, splat_project: the previous frame's)
 #define SPEC_LAYER_STEPPING 8   // restir-multilayer, layer_mode uniform / no-depth-ranges: layers by rank (restir/layers.glsl)
 #define SPEC_LOD_MAPPING 9      // passes with history, scenes with LoD groups and lod_mapping on: the resolver maps across LoD switches
-#define SPEC_DORMANT_LIST 10    // domain_propagate: the list dispatch runs the previous frame's dormant deep domains (restir/domain_list_prev.glsl)
+#define SPEC_DORMANT_LIST 10
+#define SPEC_ALPHA_TEST 11      // textured variants, scenes with alpha-tested materials: rays are not forced opaque    // domain_propagate: the list dispatch runs the previous frame's dormant deep domains (restir/domain_list_prev.glsl)
 
 #endif

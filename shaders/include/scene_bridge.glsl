@@ -27,6 +27,70 @@ layout(set = 0, binding = BINDING_MATERIALS, std430) readonly buffer Materials {
 // context (restir/context.glsl).
 layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstants u_frame; };
 
+GpuInstance instance_in(bool prev, uint i);
+
+#ifdef STRATA_TEXTURES
+// The textured variant of a pass (scenes with textures or alpha-tested materials): texture lookups
+// in material_at and load_hit, and with k_alpha_test the alpha test of every ray's candidates.
+#include "include/textures.glsl"
+
+// The texCoord sets of a triangle's vertices (xy set 0, zw set 1: TEXCOORD_1 where the scene has it).
+void triangle_texcoords(GpuPrimitive prim, uint flags, uint triangle, out vec4 t0, out vec4 t1, out vec4 t2) {
+  uint base = prim.index_offset + 3u * triangle;
+  uint i0 = prim.vertex_offset + b_indices[base];
+  uint i1 = prim.vertex_offset + b_indices[base + 1u];
+  uint i2 = prim.vertex_offset + b_indices[base + 2u];
+  t0 = vec4(b_vertices[i0].position_u.w, b_vertices[i0].normal_v.w, 0.0, 0.0);
+  t1 = vec4(b_vertices[i1].position_u.w, b_vertices[i1].normal_v.w, 0.0, 0.0);
+  t2 = vec4(b_vertices[i2].position_u.w, b_vertices[i2].normal_v.w, 0.0, 0.0);
+  if ((flags & MATERIAL_VERTEX_EXTRAS) != 0u) {
+    t0.zw = b_vertex_extras[i0].uv1.xy;
+    t1.zw = b_vertex_extras[i1].uv1.xy;
+    t2.zw = b_vertex_extras[i2].uv1.xy;
+  }
+}
+
+vec4 interpolate_texcoords(vec4 t0, vec4 t1, vec4 t2, vec2 bary) { return (1.0 - bary.x - bary.y) * t0 + bary.x * t1 + bary.y * t2; }
+
+// UV units per render-space unit of each set over the triangle: sqrt(UV area / area), the
+// triangle's Delta_0 of ray-cone texture LoD (Akenine-Moeller et al. 2019, Eq. 34) as a ratio.
+vec2 texcoord_density(vec4 t0, vec4 t1, vec4 t2, float area) {
+  vec4 a = t1 - t0;
+  vec4 b = t2 - t0;
+  vec2 uv_area = 0.5 * abs(vec2(a.x * b.y - a.y * b.x, a.z * b.w - a.w * b.z));
+  return area > 0.0 ? sqrt(uv_area / area) : vec2(0.0);
+}
+
+layout(constant_id = SPEC_ALPHA_TEST) const bool k_alpha_test = false;
+
+// Whether an alpha-tested candidate of a ray query is a surface (alpha_keeps at its texCoords).
+bool candidate_kept(bool prev, uint instance, uint geometry, uint triangle, vec2 bary) {
+  GpuPrimitive prim = b_primitives[instance_in(prev, instance).primitive_base + geometry];
+  GpuMaterialTextures m = b_material_textures[prim.material];
+  vec4 t0;
+  vec4 t1;
+  vec4 t2;
+  triangle_texcoords(prim, m.flags, triangle, t0, t1, t2);
+  return alpha_keeps(m, interpolate_texcoords(t0, t1, t2, bary));
+}
+
+// Alpha-tested primitives are non-opaque BLAS geometry (gpu/accel.h, BlasTriangles::opaque): with
+// k_alpha_test rays are not forced opaque, and every query confirms their candidates that pass the
+// test (the rest of the scene stays opaque and never reaches the loop). Without it, and in the
+// untextured variants, every ray is opaque and the loop is empty.
+#define SCENE_RAY_FLAGS (k_alpha_test ? 0u : gl_RayFlagsOpaqueEXT)
+#define CONFIRM_ALPHA_TESTED(rq, prev)                                                                    \
+  if (k_alpha_test && rayQueryGetIntersectionTypeEXT(rq, false) == gl_RayQueryCandidateIntersectionTriangleEXT && \
+      candidate_kept(prev, uint(rayQueryGetIntersectionInstanceCustomIndexEXT(rq, false)),                \
+                     uint(rayQueryGetIntersectionGeometryIndexEXT(rq, false)),                            \
+                     uint(rayQueryGetIntersectionPrimitiveIndexEXT(rq, false)),                           \
+                     rayQueryGetIntersectionBarycentricsEXT(rq, false)))                                  \
+    rayQueryConfirmIntersectionEXT(rq);
+#else
+#define SCENE_RAY_FLAGS gl_RayFlagsOpaqueEXT
+#define CONFIRM_ALPHA_TESTED(rq, prev)
+#endif
+
 // What a ray query reports: enough to reload the hit later (a path sample stores exactly this).
 struct RayHit {
   float t;
@@ -42,6 +106,11 @@ struct SurfaceHit {
   vec3 shading_normal;  // unit, interpolated, on the geometric normal's side
   float area;           // render-space triangle area
   uint material;
+#ifdef STRATA_TEXTURES
+  vec4 uv;              // texCoord sets at the hit: xy set 0, zw set 1
+  vec2 uv_density;      // UV units per render-space unit over the triangle, per set (texcoord_density)
+  uint triangle_index;  // the triangle's first index / 3 (per-triangle tables: b_light_emission)
+#endif
 };
 
 // The committed triangle hit of a finished query (false, and an empty hit, when it found none).
@@ -62,8 +131,9 @@ bool committed_hit(rayQueryEXT rq, out RayHit hit) {
 
 bool trace_closest(vec3 origin, vec3 dir, float t_max, out RayHit hit) {
   rayQueryEXT rq;
-  rayQueryInitializeEXT(rq, u_tlas, gl_RayFlagsOpaqueEXT, 0xFF, origin, 0.0, dir, t_max);
+  rayQueryInitializeEXT(rq, u_tlas, SCENE_RAY_FLAGS, 0xFF, origin, 0.0, dir, t_max);
   while (rayQueryProceedEXT(rq)) {
+    CONFIRM_ALPHA_TESTED(rq, false)
   }
   return committed_hit(rq, hit);
 }
@@ -71,12 +141,63 @@ bool trace_closest(vec3 origin, vec3 dir, float t_max, out RayHit hit) {
 // True when nothing blocks the segment origin -> origin + dir * t_max.
 bool trace_visible(vec3 origin, vec3 dir, float t_max) {
   rayQueryEXT rq;
-  rayQueryInitializeEXT(rq, u_tlas, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT, 0xFF,
+  rayQueryInitializeEXT(rq, u_tlas, SCENE_RAY_FLAGS | gl_RayFlagsTerminateOnFirstHitEXT, 0xFF,
                         origin, 0.0, dir, t_max);
   while (rayQueryProceedEXT(rq)) {
+    CONFIRM_ALPHA_TESTED(rq, false)
   }
   return rayQueryGetIntersectionTypeEXT(rq, true) == gl_RayQueryCommittedIntersectionNoneEXT;
 }
+
+#ifdef STRATA_TEXTURES
+// The shading normal of a normal-mapped surface: the texel (finest level, as every lookup that is
+// not a material's: the same normal for every path through the point) in the tangent frame. The
+// tangent is the TANGENT attribute where the file gives it (bitangent = cross(n, t) w, glTF), else
+// dP/du of the triangle in the normal texture's texCoord set, with the bitangent on the side of
+// -dP/dv (glTF's green channel points towards decreasing v). Falls back to the interpolated normal
+// where the frame degenerates.
+vec3 normal_mapped(GpuInstance inst, GpuPrimitive prim, GpuMaterialTextures mt, RayHit h, vec3 p0, vec3 p1, vec3 p2, vec4 t0,
+                   vec4 t1, vec4 t2, SurfaceHit s) {
+  vec3 n = s.shading_normal;
+  vec3 t = vec3(0.0);
+  float sign = 1.0;
+  bool have = false;
+  if ((mt.flags & MATERIAL_VERTEX_EXTRAS) != 0u) {
+    uint base = prim.index_offset + 3u * h.triangle;
+    vec4 a0 = b_vertex_extras[prim.vertex_offset + b_indices[base]].tangent;
+    vec4 a1 = b_vertex_extras[prim.vertex_offset + b_indices[base + 1u]].tangent;
+    vec4 a2 = b_vertex_extras[prim.vertex_offset + b_indices[base + 2u]].tangent;
+    if (a0.w != 0.0) {
+      vec3 t_obj = (1.0 - h.bary.x - h.bary.y) * a0.xyz + h.bary.x * a1.xyz + h.bary.y * a2.xyz;
+      t = mat3(inst.object_to_render) * t_obj;
+      // A mirroring transform turns cross(n, t) the other way round.
+      sign = (a0.w < 0.0 ? -1.0 : 1.0) * ((inst.flags & INSTANCE_FLAG_MIRRORED) != 0u ? -1.0 : 1.0);
+      have = true;
+    }
+  }
+  if (!have) {
+    vec2 d1 = mt.normal.tex_coord == 1u ? (t1 - t0).zw : (t1 - t0).xy;
+    vec2 d2 = mt.normal.tex_coord == 1u ? (t2 - t0).zw : (t2 - t0).xy;
+    float det = d1.x * d2.y - d1.y * d2.x;
+    if (!(abs(det) > 1e-12)) return n;
+    vec3 e1 = p1 - p0;
+    vec3 e2 = p2 - p0;
+    t = (e1 * d2.y - e2 * d1.y) / det;        // dP/du
+    vec3 dv = (e2 * d1.x - e1 * d2.x) / det;  // dP/dv
+    sign = dot(cross(n, t), -dv) < 0.0 ? -1.0 : 1.0;
+  }
+  t -= n * dot(n, t);
+  float tl = length(t);
+  if (!(tl > 0.0) || isinf(tl)) return n;
+  t /= tl;
+  vec3 b = cross(n, t) * sign;
+  vec3 m = sample_texture_ref(mt.normal, s.uv, s.uv_density, 0.0).xyz * 2.0 - 1.0;
+  m.xy *= mt.normal_scale;
+  vec3 mapped = m.x * t + m.y * b + m.z * n;
+  float ml = length(mapped);
+  return ml > 0.0 && !isinf(ml) ? mapped / ml : n;
+}
+#endif
 
 SurfaceHit load_hit_with(GpuInstance inst, RayHit h) {
   GpuPrimitive prim = b_primitives[inst.primitive_base + h.geometry];
@@ -101,6 +222,17 @@ SurfaceHit load_hit_with(GpuInstance inst, RayHit h) {
   vec3 n = (inst.normal_to_render * vec4(n_obj, 0.0)).xyz;
   float nl = length(n);
   s.shading_normal = nl > 0.0 && !isnan(nl) ? n / nl : s.geo_normal;
+#ifdef STRATA_TEXTURES
+  GpuMaterialTextures mt = b_material_textures[prim.material];
+  vec4 t0;
+  vec4 t1;
+  vec4 t2;
+  triangle_texcoords(prim, mt.flags, h.triangle, t0, t1, t2);
+  s.uv = interpolate_texcoords(t0, t1, t2, h.bary);
+  s.uv_density = texcoord_density(t0, t1, t2, s.area);
+  s.triangle_index = prim.index_offset / 3u + h.triangle;
+  if (mt.normal.texture >= 0) s.shading_normal = normal_mapped(inst, prim, mt, h, p0, p1, p2, t0, t1, t2, s);
+#endif
   if (dot(s.shading_normal, s.geo_normal) < 0.0) s.shading_normal = -s.shading_normal;
   s.material = prim.material;
   return s;
@@ -116,6 +248,10 @@ struct SurfaceMaterial {
   BsdfParams bsdf;
   float metallic;
   vec3 emission;      // radiance leaving the front face (and the back face when double_sided)
+  // The emission light sampling selects the triangle by, in the densities of light sampling
+  // (emitter_light_pdf): `emission` itself, but with an emissive texture the triangle's integrated
+  // texture (render/scene_textures.h), which the emitter table was built with.
+  vec3 light_emission;
   bool double_sided;
 };
 
@@ -125,12 +261,85 @@ SurfaceMaterial material_of(uint material) {
   s.bsdf = make_bsdf(m.base_color_metallic.rgb, m.base_color_metallic.a, m.emission_roughness.a, m.specular);
   s.metallic = m.base_color_metallic.a;
   s.emission = m.emission_roughness.rgb;
+  s.light_emission = s.emission;
   s.double_sided = (m.flags & MATERIAL_DOUBLE_SIDED) != 0u;
   return s;
 }
 
-// The material at a surface hit (a loaded hit, or a visibility-buffer entry's: primary_surface_hit).
-SurfaceMaterial material_at(SurfaceHit s) { return material_of(s.material); }
+// The footprint rule of texture lookups (docs/ARCHITECTURE.md, "The scene bridge"): a ray cone
+// (Akenine-Moeller et al. 2019) at the primary vertex, from the camera of the frame the vertex is in
+// (the render-space origin) with the spread of one pixel, `spread` = camera_spread(prev): the
+// footprint is spread x distance / |cos| at the vertex, in render-space units. Past the primary
+// vertex the footprint is 0: the finest level, bilinear. The footprint is part of each pixel's
+// integrand: a path's value at pixel i is defined with the footprint its own primary vertex has in
+// pixel i's frame. So every shift evaluates the TARGET pixel's integrand: the shifted path's texels
+// at the shifted path's footprint (its primary vertex in the target frame, which make_vertex of
+// restir/path_vertex.glsl sees), never the base path's; the reconnection vertex and every vertex
+// after it read the finest level in every frame and every shift.
+float camera_spread(bool prev) {
+  if (prev) return 2.0 * length(u_frame.prev_camera.up.xyz) / float(max(u_frame.prev_height, 1u));
+  return 2.0 * length(u_frame.camera.up.xyz) / float(max(u_frame.height, 1u));
+}
+
+// The footprint width at a primary vertex at `position` (render space: the camera at the origin)
+// seen under `cos_in`, for camera spread `spread` (0: the finest level).
+float primary_footprint(float spread, vec3 position, float cos_in) {
+  return spread > 0.0 ? spread * length(position) / max(abs(cos_in), 1e-2) : 0.0;
+}
+
+// The material at a surface hit (a loaded hit, or a visibility-buffer entry's: primary_surface_hit),
+// its textures read with a footprint `footprint` wide in render space (the footprint rule above).
+SurfaceMaterial material_at(SurfaceHit s, float footprint) {
+#ifdef STRATA_TEXTURES
+  GpuMaterial m = b_materials[s.material];
+  GpuMaterialTextures t = b_material_textures[s.material];
+  vec3 base = m.base_color_metallic.rgb;
+  float metallic = m.base_color_metallic.a;
+  float roughness = m.emission_roughness.a;
+  vec3 emission = m.emission_roughness.rgb;
+  if (t.base_color.texture >= 0) base *= sample_texture_ref(t.base_color, s.uv, s.uv_density, footprint).rgb;
+  if (t.metallic_roughness.texture >= 0) {
+    vec4 mr = sample_texture_ref(t.metallic_roughness, s.uv, s.uv_density, footprint);
+    roughness *= mr.g;
+    metallic *= mr.b;
+  }
+  vec3 light_emission = emission;
+  if (t.emissive.texture >= 0) {
+    light_emission = b_light_emission[s.triangle_index].rgb;
+    emission *= sample_texture_ref(t.emissive, s.uv, s.uv_density, footprint).rgb;
+  }
+  SurfaceMaterial r;
+  r.bsdf = make_bsdf(base, metallic, roughness, m.specular);
+  r.metallic = metallic;
+  r.emission = emission;
+  r.light_emission = light_emission;
+  r.double_sided = (m.flags & MATERIAL_DOUBLE_SIDED) != 0u;
+  return r;
+#else
+  return material_of(s.material);
+#endif
+}
+
+// The radiance a point of an emitter triangle emits towards a light sample's shading point (the
+// scene bridge's lights, include/scene_lights.glsl): the emitter table's emission, or with an
+// emissive texture the material's emission factor times the texel there at the finest level, as
+// material_at gives it at every vertex past the primary one (the footprint rule), so that a light
+// sample and a hit of the same point see the same radiance.
+vec3 emitter_radiance(bool prev, vec3 table_emission, uint instance, uint geometry, uint triangle, vec2 bary) {
+#ifdef STRATA_TEXTURES
+  GpuPrimitive prim = b_primitives[instance_in(prev, instance).primitive_base + geometry];
+  GpuMaterialTextures t = b_material_textures[prim.material];
+  if (t.emissive.texture < 0) return table_emission;
+  vec4 t0;
+  vec4 t1;
+  vec4 t2;
+  triangle_texcoords(prim, t.flags, triangle, t0, t1, t2);
+  vec4 texel = sample_texture_ref(t.emissive, interpolate_texcoords(t0, t1, t2, bary), vec2(0.0), 0.0);
+  return b_materials[prim.material].emission_roughness.rgb * texel.rgb;
+#else
+  return table_emission;
+#endif
+}
 
 // Whether a material emits light (the emissive material kind).
 bool material_emits(SurfaceMaterial m) { return any(greaterThan(m.emission, vec3(0.0))); }
@@ -171,8 +380,9 @@ GpuInstance instance_in(bool prev, uint i) {
 bool trace_closest_in(bool prev, vec3 origin, vec3 dir, float t_max, out RayHit hit) {
   if (!prev) return trace_closest(origin, dir, t_max, hit);
   rayQueryEXT rq;
-  rayQueryInitializeEXT(rq, u_tlas_prev, gl_RayFlagsOpaqueEXT, 0xFF, origin, 0.0, dir, t_max);
+  rayQueryInitializeEXT(rq, u_tlas_prev, SCENE_RAY_FLAGS, 0xFF, origin, 0.0, dir, t_max);
   while (rayQueryProceedEXT(rq)) {
+    CONFIRM_ALPHA_TESTED(rq, true)
   }
   return committed_hit(rq, hit);
 }
@@ -189,7 +399,7 @@ bool trace_closest_in(bool prev, vec3 origin, vec3 dir, float t_max, out RayHit 
 // kinds traces at a single call site (lavapipe inlines the traversal of each rayQueryProceedEXT).
 // The segment is [t_min, t_max] along dir (trace_span; the ray probe pass takes t_min from the host).
 bool trace_span(bool prev, vec3 origin, float t_min, vec3 dir, float t_max, bool any_hit, out RayHit hit) {
-  uint flags = gl_RayFlagsOpaqueEXT | (any_hit ? gl_RayFlagsTerminateOnFirstHitEXT : 0u);
+  uint flags = SCENE_RAY_FLAGS | (any_hit ? gl_RayFlagsTerminateOnFirstHitEXT : 0u);
   rayQueryEXT rq;
 #ifdef STRATA_HISTORY
   if (prev) rayQueryInitializeEXT(rq, u_tlas_prev, flags, 0xFF, origin, t_min, dir, t_max);
@@ -197,6 +407,7 @@ bool trace_span(bool prev, vec3 origin, float t_min, vec3 dir, float t_max, bool
 #endif
     rayQueryInitializeEXT(rq, u_tlas, flags, 0xFF, origin, t_min, dir, t_max);
   while (rayQueryProceedEXT(rq)) {
+    CONFIRM_ALPHA_TESTED(rq, prev)
   }
   return committed_hit(rq, hit);
 }
@@ -418,13 +629,30 @@ bool primary_hit(GpuPrimaryHit p, out RayHit h) {
 
 // The surface of a visibility-buffer entry's hit in the entry's own frame, as load_hit gave it to
 // the primary stage (restir/primary_data.h); meaningful only when the entry has PRIMARY_HIT.
-SurfaceHit primary_surface_hit(GpuPrimaryHit p) {
+// `prev`: the entry is the previous frame's (the texCoords of textured variants are read from the mesh
+// its instance showed then).
+SurfaceHit primary_surface_hit(bool prev, GpuPrimaryHit p) {
   SurfaceHit s;
   s.position = p.position_area.xyz;
   s.area = p.position_area.w;
   s.geo_normal = p.geo_normal_material.xyz;
   s.material = floatBitsToUint(p.geo_normal_material.w);
-  s.shading_normal = p.shading_normal_kind.xyz;
+  s.shading_normal = p.shading_normal_kind.xyz;  // normal-mapped where the material has a normal texture
+#ifdef STRATA_TEXTURES
+  s.uv = vec4(0.0);
+  s.uv_density = vec2(0.0);
+  s.triangle_index = 0u;
+  if ((p.flags & PRIMARY_HIT) != 0u) {
+    GpuPrimitive prim = b_primitives[instance_in(prev, p.instance).primitive_base + p.geometry];
+    vec4 t0;
+    vec4 t1;
+    vec4 t2;
+    triangle_texcoords(prim, b_material_textures[prim.material].flags, p.triangle, t0, t1, t2);
+    s.uv = interpolate_texcoords(t0, t1, t2, p.bary);
+    s.uv_density = texcoord_density(t0, t1, t2, s.area);
+    s.triangle_index = prim.index_offset / 3u + p.triangle;
+  }
+#endif
   return s;
 }
 

@@ -143,11 +143,11 @@ bool sample_light(vec3 x, vec3 u, out LightSample ls) {
   float cos_light = -dot(n_light, ls.direction);
   bool double_sided = (floatBitsToUint(e.p2_flags.w) & MATERIAL_DOUBLE_SIDED) != 0u;
   if (cos_light <= 0.0 && !double_sided) return false;  // one-sided emitter seen from behind
-  ls.radiance = e.emission.rgb;
   ls.instance = e.surface.x;
   ls.geometry = e.surface.y;
   ls.triangle = e.surface.z;
   ls.bary = e.surface.w != 0u ? b.yx : b;  // undo the re-winding of mirrored instances
+  ls.radiance = emitter_radiance(false, e.emission.rgb, ls.instance, ls.geometry, ls.triangle, ls.bary);  // the texel there
   ls.area = e.p0_area.w;
   ls.cos_light = abs(cos_light);
   float pmf = (1.0 - u_frame.env_select_prob) * e.p1_pmf.w;
@@ -188,7 +188,7 @@ bool sample_light_in(bool prev, vec3 x, vec3 u, out LightSample ls) {
   float cos_light = -dot(rs.hit.geo_normal, ls.direction);
   bool double_sided = (floatBitsToUint(e.p2_flags.w) & MATERIAL_DOUBLE_SIDED) != 0u;
   if (cos_light <= 0.0 && !double_sided) return false;  // one-sided emitter seen from behind
-  ls.radiance = e.emission.rgb;
+  ls.radiance = emitter_radiance(true, e.emission.rgb, rs.ray.instance, rs.ray.geometry, rs.ray.triangle, rs.ray.bary);
   ls.instance = p.instance;
   ls.geometry = p.geometry;
   ls.triangle = p.triangle;

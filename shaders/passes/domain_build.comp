@@ -185,7 +185,8 @@ GpuPrimaryHit entry_of(RayHit h, float t, SurfaceHit s) {
   p.time = 1.0;
   p.position_area = vec4(s.position, s.area);
   p.geo_normal_material = vec4(s.geo_normal, uintBitsToFloat(s.material));
-  p.shading_normal_kind = vec4(s.shading_normal, uintBitsToFloat(surface_kind(material_at(s))));
+  SurfaceMaterial m = material_at(s, primary_footprint(camera_spread(false), s.position, dot(s.geo_normal, normalize(s.position))));
+  p.shading_normal_kind = vec4(s.shading_normal, uintBitsToFloat(surface_kind(m)));
   return p;
 }
 

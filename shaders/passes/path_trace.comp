@@ -63,7 +63,8 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
       break;
     }
     SurfaceHit s = load_hit(rh);
-    SurfaceMaterial m = material_at(s);
+    // The scene bridge's footprint rule: a ray cone at the primary vertex, the finest level past it.
+    SurfaceMaterial m = material_at(s, depth == 1u ? primary_footprint(camera_spread(false), s.position, dot(s.geo_normal, dir)) : 0.0);
     bool double_sided = m.double_sided;
     float cos_hit = dot(s.geo_normal, -dir);
     bool front = cos_hit > 0.0;
@@ -72,7 +73,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     if (any(greaterThan(emission, vec3(0.0))) && (front || double_sided)) {
       float w = 1.0;
       if (k_emitters && prev_bsdf_pdf > 0.0) {
-        w = mis_power(prev_bsdf_pdf, emitter_light_pdf(false, emission, s.area, double_sided, rh.t, cos_hit));
+        w = mis_power(prev_bsdf_pdf, emitter_light_pdf(false, m.light_emission, s.area, double_sided, rh.t, cos_hit));
       }
       radiance += throughput * emission * w;
     }

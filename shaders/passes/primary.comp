@@ -68,7 +68,8 @@ void main() {
     SurfaceHit s = load_hit(h);
     p.position_area = vec4(s.position, s.area);
     p.geo_normal_material = vec4(s.geo_normal, uintBitsToFloat(s.material));
-    p.shading_normal_kind = vec4(s.shading_normal, uintBitsToFloat(surface_kind(material_at(s))));
+    SurfaceMaterial m = material_at(s, primary_footprint(camera_spread(false), s.position, dot(s.geo_normal, dir)));
+    p.shading_normal_kind = vec4(s.shading_normal, uintBitsToFloat(surface_kind(m)));
   }
   b_primary[index] = p;
 }

@@ -124,7 +124,8 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
     g_primary_emission += environment_radiance(dir) / n_init;  // one segment: not resampled
     return;
   }
-  Vertex v = domain_primary ? make_vertex(primary_surface_hit(ph), h, ph.lod, dir) : load_vertex(false, h, dir);
+  float spread = camera_spread(false);  // the primary vertex (the scene bridge's footprint rule)
+  Vertex v = domain_primary ? make_vertex(primary_surface_hit(false, ph), h, ph.lod, dir, spread) : load_vertex(false, h, dir, spread);
   y.x1 = v.point;
   g_primary_emission += v.emission / n_init;  // one segment: not resampled
   float camera_distance = length(v.position);
@@ -209,7 +210,7 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
     vec3 le = environment_radiance(d);
     float pl = light_pdf_environment(false);
     if (hit) {
-      w = load_vertex(false, h, d);
+      w = load_vertex(false, h, d, 0.0);
       edge = length(w.position - v.position);
       le = w.emission;
       pl = light_pdf_emitter(false, w.material_emission, w.area, w.double_sided, edge, w.cos_in);
@@ -297,7 +298,7 @@ vec3 stratified_mean(uvec2 pixel, uint index, uint g, uint first_stream, bool al
       if (!albedo) sum += environment_radiance(dir);
       continue;
     }
-    Vertex v = load_vertex(false, h, dir);
+    Vertex v = load_vertex(false, h, dir, camera_spread(false));
     sum += albedo ? cv_albedo(v.bsdf) : v.emission;
   }
   return sum / float(g * g);
@@ -318,7 +319,8 @@ bool sees_emission(GpuPrimaryHit h) {
 
 vec3 primary_albedo(GpuPrimaryHit e) {
   if ((e.flags & PRIMARY_HIT) == 0u) return vec3(0.0);
-  return cv_albedo(material_at(primary_surface_hit(e)).bsdf);
+  SurfaceHit s = primary_surface_hit(false, e);
+  return cv_albedo(material_at(s, primary_footprint(camera_spread(false), s.position, dot(s.geo_normal, normalize(s.position)))).bsdf);
 }
 
 // What this pixel's 8 neighbours' visibility-buffer entries say about the edges it may straddle,

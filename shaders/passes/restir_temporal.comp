@@ -61,7 +61,7 @@ bool backproject(uvec2 pixel, out Backprojection b) {
   GpuPrimaryHit entry = b_primary[pixel_index(pixel)];
   SurfacePoint centre = primary_surface(entry);
   if (centre.instance == SURFACE_NONE) return false;
-  b.centre = primary_surface_hit(entry);
+  b.centre = primary_surface_hit(false, entry);
   b.before = resolve_surface(true, centre);  // across a LoD switch: tau of the centre (LOD 4.4's motion vectors)
   count_lod_mapping(b.before);
   if (b.before.reason != RESOLVE_OK) return false;
@@ -81,7 +81,7 @@ bool backproject(uvec2 pixel, out Backprojection b) {
 // that is becomes q. Reads the visibility buffers only, never a reservoir, so the domain is still
 // chosen independently of the samples.
 bool find_history(inout Backprojection b) {
-  CentreSurface now = surface_of(b.before, length(b.before.hit.position));
+  CentreSurface now = surface_of(b.before, length(b.before.hit.position), camera_spread(true));
   vec2 f = fract(b.s);
   ivec2 step = ivec2(f.x < 0.5 ? -1 : 1, f.y < 0.5 ? -1 : 1);  // towards the nearer neighbours
   bool x_first = abs(f.x - 0.5) > abs(f.y - 0.5);
@@ -99,7 +99,7 @@ bool find_history(inout Backprojection b) {
 void load_previous_centre(inout Backprojection b) {
   GpuPrimaryHit q_entry = b_primary_prev[b.q.y * u_frame.prev_width + b.q.x];
   b.have_previous = (q_entry.flags & PRIMARY_HIT) != 0u;
-  if (b.have_previous) b.previous = primary_surface_hit(q_entry);
+  if (b.have_previous) b.previous = primary_surface_hit(true, q_entry);
 }
 
 // The tutorial's validation of the history for the current pixel (DI tutorial section 5): the

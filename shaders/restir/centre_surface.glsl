@@ -36,13 +36,15 @@ CentreSurface no_centre_surface(float depth) {
   return c;
 }
 
-// A resolved surface point seen at distance `depth`.
-CentreSurface surface_of(ResolvedSurface r, float depth) {
+// A resolved surface point seen at distance `depth` by a camera of spread `spread` (camera_spread of
+// the frame it was resolved in: its material's kind at its primary footprint, as the primary stage
+// classifies its entries).
+CentreSurface surface_of(ResolvedSurface r, float depth, float spread) {
   CentreSurface c = no_centre_surface(depth);
   if (r.reason != RESOLVE_OK) return c;
   c.valid = true;
   c.normal = r.hit.shading_normal;
-  c.kind = surface_kind(material_at(r.hit));
+  c.kind = surface_kind(material_at(r.hit, primary_footprint(spread, r.hit.position, dot(r.hit.geo_normal, normalize(r.hit.position)))));
   return c;
 }
 

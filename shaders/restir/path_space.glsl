@@ -323,7 +323,9 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
       break;
     }
     if (path_end && escaped) return shift_fail(r, j == 0u ? SHIFT_FAIL_PRIMARY : SHIFT_FAIL_REPLAY);
-    Vertex w = fixed_vertex ? make_vertex(primary_surface_hit(dp.hit), h, dp.hit.lod, dir) : load_vertex(prev, h, dir);
+    float spread = j == 0u ? camera_spread(prev) : 0.0;  // the footprint rule: the target path's primary vertex
+    Vertex w = fixed_vertex ? make_vertex(primary_surface_hit(prev, dp.hit), h, dp.hit.lod, dir, spread)
+                            : load_vertex(prev, h, dir, spread);
     if (j == 0u) {
       r.x1 = w.point;
       camera_distance = length(w.position);
@@ -366,7 +368,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
       if (!(dist2 > 0.0)) return shift_fail(r, SHIFT_FAIL_JACOBIAN);
       dist = sqrt(dist2);
       d = e / dist;
-      xk = make_vertex(sk, rk.ray, rk.lod, d);
+      xk = make_vertex(sk, rk.ray, rk.lod, d, 0.0);  // k >= 2: past the primary vertex
       // A grazing x_k is excluded by the structure rules (NEE drops grazing light samples).
       if (xk.cos_in < SHIFT_MIN_COS) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
       geometry = xk.cos_in / dist2;

@@ -34,7 +34,7 @@ struct Vertex {
   BsdfParams bsdf;
   bool rough;         // may take part in a reconnection (RECONNECT_MIN_ALPHA, or no specular lobe)
   vec3 emission;      // radiance emitted back along the arriving segment (0 when it faces away)
-  vec3 material_emission;
+  vec3 material_emission;  // what light sampling selects its triangle by (SurfaceMaterial::light_emission)
   bool double_sided;
   float area;
   float cos_in;       // |cos| between the geometric normal and the arriving segment
@@ -42,10 +42,12 @@ struct Vertex {
   SurfacePoint point;
 };
 
-Vertex make_vertex(SurfaceHit s, RayHit h, uint lod, vec3 dir_in) {
+// `spread`: camera_spread of the vertex's frame at a primary vertex, 0 past it (the scene bridge's
+// footprint rule: the footprint is the target path's own, whichever frame and pixel it is built for).
+Vertex make_vertex(SurfaceHit s, RayHit h, uint lod, vec3 dir_in, float spread) {
   Vertex v;
-  SurfaceMaterial m = material_at(s);
   float cos_hit = dot(s.geo_normal, -dir_in);
+  SurfaceMaterial m = material_at(s, primary_footprint(spread, s.position, cos_hit));
   bool front = cos_hit > 0.0;
   v.position = s.position;
   v.ng = front ? s.geo_normal : -s.geo_normal;
@@ -55,7 +57,7 @@ Vertex make_vertex(SurfaceHit s, RayHit h, uint lod, vec3 dir_in) {
   v.bsdf = m.bsdf;
   v.rough = rough_vertex(v.bsdf.alpha, max(v.bsdf.f0.r, max(v.bsdf.f0.g, v.bsdf.f0.b)));
   v.double_sided = m.double_sided;
-  v.material_emission = m.emission;
+  v.material_emission = m.light_emission;
   v.emission = (front || v.double_sided) ? m.emission : vec3(0.0);
   v.area = s.area;
   v.cos_in = abs(cos_hit);
@@ -84,9 +86,9 @@ bool replay_bsdf_direction(Vertex v, uint seed, uint j, out vec3 dir, out vec3 f
   return dot(dir, v.ng) > 0.0;
 }
 
-// The vertex a ray found in the current (prev = false) or the previous frame.
-Vertex load_vertex(bool prev, RayHit h, vec3 dir_in) {
-  return make_vertex(load_hit_in(prev, h), h, instance_in(prev, h.instance).lod, dir_in);
+// The vertex a ray found in the current (prev = false) or the previous frame; `spread` as for make_vertex.
+Vertex load_vertex(bool prev, RayHit h, vec3 dir_in, float spread) {
+  return make_vertex(load_hit_in(prev, h), h, instance_in(prev, h.instance).lod, dir_in, spread);
 }
 
 // f(wo, d) |cos| at v; zero when d leaves below the geometric surface (reflection only).

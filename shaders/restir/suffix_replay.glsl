@@ -115,7 +115,7 @@ SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {
     vec3 le = environment_radiance(dir);
     float pl = light_pdf_environment(prev);
     if (hit) {
-      Vertex w = load_vertex(prev, h, dir);
+      Vertex w = load_vertex(prev, h, dir, 0.0);  // past the reconnection vertex
       if (!last) {
         v = w;
         continue;
