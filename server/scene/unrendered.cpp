@@ -33,10 +33,6 @@ std::vector<std::string> unrendered_features(const Scene& scene) {
     out.push_back("alphaMode MASK on " + gltf::count_of(masked, "material") + " (rendered opaque: not yet alpha-tested)");
   if (blended > 0)
     out.push_back("alphaMode BLEND on " + gltf::count_of(blended, "material") + " (rendered opaque)");
-  if (!scene.lights.empty()) {
-    out.push_back("KHR_lights_punctual: " + gltf::count_of(scene.lights.size(), "light") +
-                  " (loaded, not yet rendered)");
-  }
   if (scene.environment.map) {
     out.push_back("environment map '" + scene.environment.map->name +
                   "' (loaded, not yet rendered: escaping rays see the constant environment colour)");
