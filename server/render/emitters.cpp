@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "render/scene_textures.h"
+#include "render/punctual_lights.h"
 
 namespace strata::render {
 
@@ -42,7 +43,8 @@ glm::mat4 object_to_render(const glm::mat4& m, glm::dvec3 origin) {
   return r;
 }
 
-EmitterTable build_emitter_table(const scene::Scene& scene, const scene::FrameState& frame, glm::dvec3 origin) {
+EmitterTable build_emitter_table(const scene::Scene& scene, const scene::FrameState& frame, glm::dvec3 origin,
+                                 double scene_radius) {
   EmitterTable t;
   std::vector<double> power;
   for (size_t i = 0; i < scene.instances.size(); ++i) {
@@ -77,7 +79,15 @@ EmitterTable build_emitter_table(const scene::Scene& scene, const scene::FrameSt
       }
     }
   }
-  for (size_t i = 0; i < t.emitters.size(); ++i) t.emitters[i].p1_pmf.w = float(power[i] / t.total_power);
+  for (size_t l = 0; l < scene.lights.size(); ++l) {
+    t.lights.push_back(punctual_record(scene.lights[l], frame.lights.at(l), origin));
+    const double w = punctual_power(scene.lights[l], scene_radius);
+    power.push_back(w);
+    t.total_power += w;
+  }
+  const double total = t.total_power > 0.0 ? t.total_power : 1.0;
+  for (size_t i = 0; i < t.emitters.size(); ++i) t.emitters[i].p1_pmf.w = float(power[i] / total);
+  for (size_t l = 0; l < t.lights.size(); ++l) t.lights[l].intensity_pmf.w = float(power[t.emitters.size() + l] / total);
   t.alias = build_alias_table(power);
   return t;
 }

@@ -67,6 +67,11 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   c.emitter_count = scene.emitter_count();
   c.total_emitter_power = float(scene.total_emitter_power());
   c.env_select_prob = env_select_prob(setup.env_nee);
+  c.light_count = scene.light_count();
+  const auto address = [](VkDeviceAddress a) { return glm::uvec2(uint32_t(a), uint32_t(a >> 32)); };
+  c.lights = address(scene.lights_address(scene.parity()));
+  // With history the other slot holds the previous frame's records; without, this frame's stand in.
+  c.prev_lights = address(scene.lights_address(scene.keeps_history() ? 1 - scene.parity() : scene.parity()));
 
   // The previous frame (docs/ARCHITECTURE.md, State, session state): the one the scene's previous slot
   // holds, at the same resolution (a session's image size is fixed). After the first update that
@@ -82,6 +87,7 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
     c.history_flags = gpu::HISTORY_VALID;
     if (scene.moved_since_previous()) c.history_flags |= gpu::HISTORY_SCENE_MOVED;
     if (scene.lights_reselected()) c.history_flags |= gpu::HISTORY_LIGHTS_RESELECTED;
+    if (scene.lights_moved()) c.history_flags |= gpu::HISTORY_LIGHTS_MOVED;
     if (frame.camera == prev.camera && frame.camera_open == prev.camera_open) c.history_flags |= gpu::HISTORY_CAMERA_STILL;
   }
   return c;

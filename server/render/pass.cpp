@@ -37,9 +37,11 @@ Pass::Pass(const gpu::Context& ctx, const GpuScene* scene, SceneUse use, const c
            std::vector<gpu::SpecConstant> spec)
     : scene_(scene), use_(use), resources_(std::move(resources)) {
   std::vector<gpu::Binding> bindings;
+  const bool punctual = scene_ && use_.lights && scene_->has_punctual();
   if (scene_) bindings = scene_->bindings(use_.lights, use_.history);
   for (const auto& r : resources_) bindings.push_back({r.binding, r.type});
   if (scene_ && use_.history && scene_->lod_mapping_compiled()) spec.push_back({SPEC_LOD_MAPPING, VK_TRUE});
+  if (punctual) spec.push_back({SPEC_PUNCTUAL, VK_TRUE});
   if (scene_) scene_->add_spec(spec);
   pipeline_ = std::make_unique<gpu::ComputePipeline>(ctx, scene_ ? scene_->shader(shader) : std::string(shader), bindings, spec, 0);
   for (auto& s : sets_) s = std::make_unique<gpu::DescriptorSet>(ctx, *pipeline_);

@@ -18,15 +18,19 @@ std::vector<gpu::Binding> path_trace_bindings(const GpuScene& scene) {
 
 // The parts of the path tracer a frame needs, as specialization constants.
 struct Features {
-  bool thin_lens, env_nee, emitters, motion_blur;
+  bool thin_lens, env_nee, emitters, motion_blur, punctual;
   uint32_t key() const {
-    return uint32_t(thin_lens) | uint32_t(env_nee) << 1 | uint32_t(emitters) << 2 | uint32_t(motion_blur) << 3;
+    return uint32_t(thin_lens) | uint32_t(env_nee) << 1 | uint32_t(emitters) << 2 | uint32_t(motion_blur) << 3 |
+           uint32_t(punctual) << 4;
   }
 };
 
+// A scene without punctual lights leaves SPEC_PUNCTUAL out, one without alpha SPEC_ALPHA_TEST: the
+// pipeline is the one it always was.
 std::vector<gpu::SpecConstant> spec(const GpuScene& scene, Features f) {
   std::vector<gpu::SpecConstant> s{{SPEC_THIN_LENS, f.thin_lens}, {SPEC_ENV_NEE, f.env_nee}, {SPEC_EMITTERS, f.emitters},
                                    {SPEC_MOTION_BLUR, f.motion_blur}};
+  if (f.punctual) s.push_back({SPEC_PUNCTUAL, VK_TRUE});
   scene.add_spec(s);
   return s;
 }
@@ -56,10 +60,11 @@ PathTracer::~PathTracer() = default;
 void PathTracer::record(VkCommandBuffer cmd, gpu::PassTimer& timer, const MethodFrame& f) {
   const bool blur = f.frame.camera_open.has_value();
   const bool lens = f.frame.camera.aperture > 0.0f || (blur && f.frame.camera_open->aperture > 0.0f);
-  Features features{lens, f.env_nee, shared_.scene.has_emitters(), blur};
+  Features features{lens, f.env_nee, shared_.scene.has_emitters(), blur, shared_.scene.has_punctual()};
   auto& v = variants_[features.key()];
   if (!v) v = std::make_unique<Variant>(shared_, features);
   last_variant_ = std::to_string(shared_.scene.emitter_count()) + " emissive triangles" +
+                  (features.punctual ? " + " + std::to_string(shared_.scene.light_count()) + " punctual lights" : "") +
                   (features.env_nee ? " + environment" : "") + (features.thin_lens ? ", thin lens" : ", pinhole") +
                   (features.motion_blur ? ", motion blur" : "");
   timer.begin(cmd, "path_trace");

@@ -82,7 +82,10 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
     if (frame.lods[i] >= sc.instances[i].lod_meshes.size())
       throw std::invalid_argument("lods[" + std::to_string(i) + "] = " + std::to_string(frame.lods[i]) + " but instance has " +
                                   std::to_string(sc.instances[i].lod_meshes.size()) + " levels");
-  const bool env_nee = environment_nee(sc.environment, scene_->has_emitters());
+  if (frame.lights.size() != sc.lights.size())
+    throw std::invalid_argument("frame state has " + std::to_string(frame.lights.size()) + " light transforms for " +
+                                std::to_string(sc.lights.size()) + " lights");
+  const bool env_nee = environment_nee(sc.environment, scene_->has_emitters() || scene_->has_punctual());
   if (!accumulate) accumulated_spp_ = 0;
   uint32_t tlas_builds_before = scene_->tlas_builds(), tlas_refits_before = scene_->tlas_refits();
 

@@ -7,6 +7,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "include/bindings.h"
+#include "render/punctual_lights.h"
 
 namespace strata::render {
 namespace {
@@ -25,7 +26,11 @@ GpuScene::GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep
     slot.tlas = std::make_unique<gpu::Tlas>(ctx, uint32_t(scene.instances.size()));
     slot.instances = gpu::Buffer(ctx, std::max<size_t>(16, sizeof(gpu::GpuInstance) * scene.instances.size()),
                                  gpu::k_storage_usage, gpu::Memory::Host, "instances");
+    if (has_punctual())
+      slot.lights = gpu::Buffer(ctx, sizeof(gpu::GpuPunctualLight) * scene.lights.size(), gpu::k_storage_usage,
+                                gpu::Memory::Host, "punctual lights");
   }
+  if (has_punctual()) scene_radius_ = scene_bounding_radius(scene);
   if (keep_history) {
     swept_ = gpu::Buffer(ctx, sizeof(gpu::GpuSweptBoxes), gpu::k_storage_usage, gpu::Memory::Host, "swept boxes");
     if (LodUvSpace::needed(scene)) {
@@ -55,7 +60,8 @@ GpuScene::GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep
   emitter_capacity_ = uint32_t(capacity);
   emitters_ = gpu::Buffer(ctx, std::max<size_t>(16, sizeof(gpu::GpuEmitter) * capacity), gpu::k_storage_usage, gpu::Memory::Host,
                           "emitters");
-  alias_ = gpu::Buffer(ctx, std::max<size_t>(16, sizeof(gpu::GpuAliasEntry) * capacity), gpu::k_storage_usage, gpu::Memory::Host,
+  alias_ = gpu::Buffer(ctx, std::max<size_t>(16, sizeof(gpu::GpuAliasEntry) * (capacity + scene.lights.size())),
+                       gpu::k_storage_usage, gpu::Memory::Host,
                        "emitter alias table");
 }
 
@@ -146,11 +152,18 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
     ++seed_builds_;
   }
   if (keeps_history()) upload_swept_boxes(frame, origin);
+  lights_moved_ = frames_ > 0 && frame.lights != current_.lights;
   if (frames_ > 0) previous_ = std::move(current_);
   else previous_ = frame;
   current_ = frame;
 
-  EmitterTable table = build_emitter_table(scene_, frame, origin);
+  EmitterTable table = build_emitter_table(scene_, frame, origin, scene_radius_);
+  if (has_punctual()) {
+    // With history the other slot keeps the previous frame's records (its render space), as it keeps its instances.
+    slots_[size_t(parity_)].lights.upload(table.lights.data(), table.lights.size() * sizeof(gpu::GpuPunctualLight));
+    if (keeps_history() && frames_ == 0)
+      slots_[size_t(1 - parity_)].lights.upload(table.lights.data(), table.lights.size() * sizeof(gpu::GpuPunctualLight));
+  }
   prev_emitter_count_ = frames_ > 0 ? emitter_count_ : uint32_t(table.emitters.size());
   prev_total_power_ = frames_ > 0 ? total_power_ : table.total_power;
   emitter_count_ = uint32_t(table.emitters.size());
@@ -164,6 +177,7 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
     selection.probabilities.push_back(e.p1_pmf.w);
     for (int k = 0; k < 4; ++k) selection.choices.push_back(e.surface[k]);
   }
+  for (const auto& l : table.lights) selection.probabilities.push_back(l.intensity_pmf.w);
   for (const auto& a : table.alias) {
     selection.probabilities.push_back(a.threshold);
     selection.choices.push_back(a.alias);
@@ -308,9 +322,10 @@ SceneMemory GpuScene::memory() const {
   for (const auto& b : blas_) m.acceleration += b.bytes();
   const Slot& first = slots_[0];
   m.acceleration += first.tlas->bytes() + first.tlas->scratch_bytes();
-  m.per_frame = first.instances.size() + emitters_.size() + alias_.size();
+  m.per_frame = first.instances.size() + emitters_.size() + alias_.size() + (has_punctual() ? first.lights.size() : 0);
   for (size_t i = 1; i < slots_.size(); ++i)
-    m.history += slots_[i].tlas->bytes() + slots_[i].tlas->scratch_bytes() + slots_[i].instances.size();
+    m.history += slots_[i].tlas->bytes() + slots_[i].tlas->scratch_bytes() + slots_[i].instances.size() +
+                 (has_punctual() ? slots_[i].lights.size() : 0);
   if (keeps_history()) m.history += swept_.size() + lod_off_table_.size();
   if (lod_uv_) m.lod_uv = lod_uv_->bytes();
   if (textures_) m.textures = textures_->bytes();

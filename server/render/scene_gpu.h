@@ -27,7 +27,7 @@ namespace strata::render {
 struct SceneMemory {
   VkDeviceSize geometry = 0;       // vertices, indices, primitive and material records
   VkDeviceSize acceleration = 0;   // BLAS, TLAS, scratch
-  VkDeviceSize per_frame = 0;      // instances, emitters, alias table
+  VkDeviceSize per_frame = 0;      // instances, emitters, alias table, punctual lights
   VkDeviceSize history = 0;        // the previous frame's slot: second TLAS, its scratch, instances
   VkDeviceSize lod_uv = 0;         // LoD-aware reuse: UV BLASes, UV TLAS, LoD table (scenes with LoD groups, with history)
   VkDeviceSize textures = 0;       // texels, texture and level tables, material texture records, vertex extras (textured scenes)
@@ -60,6 +60,15 @@ class GpuScene {
   void add_spec(std::vector<gpu::SpecConstant>& spec) const {
     if (alpha_tested()) spec.push_back({SPEC_ALPHA_TEST, VK_TRUE});
   }
+  // The scene has KHR_lights_punctual lights: passes that sample lights compile them in
+  // (SPEC_PUNCTUAL) and read their records by the device addresses in the frame constants
+  // (lights(slot)); a scene without binds and compiles none of it.
+  bool has_punctual() const { return !scene_.lights.empty(); }
+  uint32_t light_count() const { return uint32_t(scene_.lights.size()); }
+  // Device address of the punctual light records of the frame a slot holds (0 without lights).
+  VkDeviceAddress lights_address(int slot) const { return has_punctual() ? slots_.at(size_t(slot)).lights.address() : 0; }
+  // Some punctual light of the last recorded frame is not where the frame before had it.
+  bool lights_moved() const { return lights_moved_; }
   // LoD-aware reuse (with history): the session's options, read by the next frame's passes. The
   // UV-space structure exists only for scenes with LoD groups (render/lod_uv_space.h).
   void set_lod_mapping(const LodMappingSettings& s);
@@ -77,8 +86,8 @@ class GpuScene {
   // Slot 1 - parity() holds the frame before the last one (false after the first frame: it holds
   // a copy of that frame then).
   bool history_valid() const { return keeps_history() && frames_ >= 2; }
-  // Some transform or LoD level of the last recorded frame differs from the frame before it.
-  bool moved_since_previous() const { return changed_instances() != 0; }
+  // Some transform or LoD level or punctual light of the last recorded frame differs from the frame before it.
+  bool moved_since_previous() const { return changed_instances() != 0 || lights_moved_; }
   // Per instance, what changed between the frame before and the last recorded one
   // (INSTANCE_CHANGED_*; the same bits are in the device's instance records of that frame).
   const std::vector<uint32_t>& instance_changes() const { return changes_; }
@@ -123,6 +132,7 @@ class GpuScene {
   struct Slot {
     std::unique_ptr<gpu::Tlas> tlas;
     gpu::Buffer instances;
+    gpu::Buffer lights;               // the frame's GpuPunctualLight records (scenes with punctual lights)
     std::vector<uint32_t> last_lods;  // of this TLAS's last build: a refit needs the same BLASes
     glm::dvec3 origin{0.0};
   };
@@ -152,6 +162,8 @@ class GpuScene {
   std::vector<uint32_t> changes_;               // per instance, INSTANCE_CHANGED_* of the last frame
   std::vector<bool> instance_emits_;            // per instance: some level has emissive triangles
   bool has_emitters_ = false;
+  double scene_radius_ = 1.0;                   // scene_bounding_radius (directional lights' power)
+  bool lights_moved_ = false;
   uint32_t emitter_count_ = 0;
   uint32_t emitter_capacity_ = 0;
   double total_power_ = 0.0;

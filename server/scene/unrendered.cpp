@@ -11,10 +11,6 @@ std::vector<std::string> unrendered_features(const Scene& scene) {
   for (const Material& m : scene.materials) blended += m.alpha_mode == AlphaMode::kBlend ? 1 : 0;
   if (blended > 0)
     out.push_back("alphaMode BLEND on " + gltf::count_of(blended, "material") + " (rendered as MASK at alpha cutoff 0.5)");
-  if (!scene.lights.empty()) {
-    out.push_back("KHR_lights_punctual: " + gltf::count_of(scene.lights.size(), "light") +
-                  " (loaded, not yet rendered)");
-  }
   if (scene.environment.map) {
     out.push_back("environment map '" + scene.environment.map->name +
                   "' (loaded, not yet rendered: escaping rays see the constant environment colour)");

@@ -66,7 +66,8 @@
 #define SPEC_DOMAIN_LIST 7      // this dispatch runs a list of active deep domains (initial, splat_resample: this frame's; domain_propagate, splat_project: the previous frame's)
 #define SPEC_LAYER_STEPPING 8   // restir-multilayer, layer_mode uniform / no-depth-ranges: layers by rank (restir/layers.glsl)
 #define SPEC_LOD_MAPPING 9      // passes with history, scenes with LoD groups and lod_mapping on: the resolver maps across LoD switches
-#define SPEC_DORMANT_LIST 10
-#define SPEC_ALPHA_TEST 11      // textured variants, scenes with alpha-tested materials: rays are not forced opaque    // domain_propagate: the list dispatch runs the previous frame's dormant deep domains (restir/domain_list_prev.glsl)
+#define SPEC_DORMANT_LIST 10    // domain_propagate: the list dispatch runs the previous frame's dormant deep domains (restir/domain_list_prev.glsl)
+#define SPEC_ALPHA_TEST 11      // textured variants, scenes with alpha-tested materials: rays are not forced opaque
+#define SPEC_PUNCTUAL 12        // passes that sample lights, scenes with punctual lights: the light table's punctual entries (include/scene_lights.glsl)
 
 #endif

@@ -50,6 +50,16 @@ struct GpuFrameConstants {
   float prev_env_select_prob;
   uint prev_width;
   uint prev_height;
+  // Punctual lights: entries emitter_count .. emitter_count + light_count - 1 of the light table,
+  // their GpuPunctualLight records by device address (a buffer reference, so that a scene without
+  // them binds nothing; include/scene_lights.glsl), of this frame and of the previous one (its
+  // render space; this frame's own without history). 0 without punctual lights.
+  uint light_count;
+  uint pad0;
+  uvec2 lights;
+  uvec2 prev_lights;
+  uint pad1;
+  uint pad2;
 };
 
 // history_flags bits.
@@ -58,6 +68,7 @@ CONST_DEF uint HISTORY_SCENE_MOVED = 2u;   // some instance changed since then (
 CONST_DEF uint HISTORY_LIGHTS_RESELECTED = 4u;  // light selection (emitter table or environment share) differs:
                                                 // the same random numbers choose another light in each frame
 CONST_DEF uint HISTORY_CAMERA_STILL = 8u;  // the camera (and its shutter) is the previous frame's
+CONST_DEF uint HISTORY_LIGHTS_MOVED = 16u; // a punctual light moved or turned (HISTORY_SCENE_MOVED is set with it)
 
 // primary_mode: which camera ray the primary stage traces per pixel (restir/primary_data.h).
 CONST_DEF uint PRIMARY_CENTRE = 0u;  // through the pixel centre and the lens centre, at the frame's instant
@@ -129,6 +140,6 @@ CONST_DEF uint COUNTER_COUNT = 72u;
 STRATA_NAMESPACE_END
 
 #ifdef __cplusplus
-static_assert(sizeof(strata::gpu::GpuFrameConstants) == 336);
+static_assert(sizeof(strata::gpu::GpuFrameConstants) == 368);
 #endif
 #endif

@@ -76,6 +76,21 @@ struct GpuEmitter {
   uvec4 surface;      // instance, geometry (primitive of its mesh), triangle, 1 if p1/p2 were swapped (re-wound)
 };
 
+// A KHR_lights_punctual light as the frame has it, in render space (include/scene_lights.glsl). The
+// light table is the emissive triangles followed by these, one alias table over both: entry
+// emitter_count + i of the table is punctual light i (the scene's light index, the same every frame).
+// Units (scene/scene.h): point and spot intensity I gives irradiance I / d^2 facing the light; a
+// directional light's intensity is the irradiance facing it.
+CONST_DEF uint PUNCTUAL_DIRECTIONAL = 0u;
+CONST_DEF uint PUNCTUAL_POINT = 1u;
+CONST_DEF uint PUNCTUAL_SPOT = 2u;
+struct GpuPunctualLight {
+  vec4 position_range;   // xyz render-space position (point, spot), w range (0: unlimited)
+  vec4 direction_type;   // xyz unit direction the light shines (spot, directional), w PUNCTUAL_* as a float
+  vec4 intensity_pmf;    // rgb colour x intensity, w probability that the light table picks this light
+  vec4 cone;             // spot: x light angle scale, y light angle offset (KHR_lights_punctual's reference); zw 0
+};
+
 // Walker/Vose alias table entry over emitters.
 struct GpuAliasEntry {
   float threshold;
@@ -93,6 +108,7 @@ static_assert(sizeof(strata::gpu::GpuInstance) == 144);
 static_assert(sizeof(strata::gpu::GpuMaterial) == 48);
 static_assert(sizeof(strata::gpu::GpuEmitter) == 80);
 static_assert(sizeof(strata::gpu::GpuAliasEntry) == 16);
+static_assert(sizeof(strata::gpu::GpuPunctualLight) == 64);
 static_assert(sizeof(strata::gpu::GpuSweptBoxes) == 32 + 32 * strata::gpu::SWEPT_BOXES_MAX);
 #endif
 #endif

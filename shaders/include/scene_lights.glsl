@@ -1,11 +1,16 @@
 // The lights of the scene bridge (include/scene_bridge.glsl includes this file at its end; a pass
 // includes the bridge, never this file): next-event estimation's light sample and its density in
-// either frame, the density of a light hit by another strategy, and the environment. Emissive
-// triangles are chosen by power through an alias table, the constant environment with probability
-// env_select_prob. Solid-angle densities throughout. The emitter records and the frame's light
-// totals are read here only.
+// either frame, the density of a light hit by another strategy, and the environment. The light
+// table holds the emissive triangles and, in scenes that have them, the punctual lights
+// (KHR_lights_punctual; compiled in by SPEC_PUNCTUAL, bound only then); one alias table chooses
+// among them by power, the constant environment is chosen with probability env_select_prob.
+// Solid-angle densities throughout, except for a punctual light: a delta, whose sample's `pdf` is
+// the probability of choosing it. The emitter and light records and the frame's light totals are
+// read here only.
 #ifndef STRATA_SCENE_LIGHTS_GLSL
 #define STRATA_SCENE_LIGHTS_GLSL
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
 
 #include "include/bindings.h"
 #include "include/frame_data.h"
@@ -16,6 +21,13 @@
 
 layout(set = 0, binding = BINDING_EMITTERS, std430) readonly buffer Emitters { GpuEmitter b_emitters[]; };
 layout(set = 0, binding = BINDING_ALIAS, std430) readonly buffer Alias { GpuAliasEntry b_alias[]; };
+
+// Punctual lights: this frame's records, and the previous frame's (its render space), by the
+// device addresses of the frame constants: no descriptor, so a scene without them binds nothing
+// and, with SPEC_PUNCTUAL off, compiles none of their code.
+layout(constant_id = SPEC_PUNCTUAL) const bool k_punctual = false;
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer PunctualLights { GpuPunctualLight records[]; };
+GpuPunctualLight punctual_in(bool prev, uint i) { return PunctualLights(prev ? u_frame.prev_lights : u_frame.lights).records[i]; }
 
 struct LightSample {
   vec3 direction;     // unit, from the shading point
@@ -28,7 +40,9 @@ struct LightSample {
   uint triangle;
   vec2 bary;          // hit-convention barycentrics (weights of the triangle's vertices 1 and 2)
   float area;         // render-space triangle area
-  float cos_light;    // |cos| at the emitter towards the shading point
+  float cos_light;    // |cos| at the emitter towards the shading point (1 for a punctual light)
+  bool delta;         // a punctual light: BSDF sampling never finds it (its MIS weight is 1), `pdf` is a probability
+  uint light;         // a punctual light's index (the scene's; its entry in the table is emitter_count + light)
 };
 
 // Solid-angle density of sampling a point on an emitter of `area` seen at `distance` under
@@ -83,20 +97,73 @@ LightSample light_sample_none() {
   ls.bary = vec2(0.0);
   ls.area = 0.0;
   ls.cos_light = 1.0;
+  ls.delta = false;
+  ls.light = 0u;
   return ls;
+}
+
+// Entries of the light table: the emissive triangles, then the punctual lights where compiled in.
+uint light_table_size() { return k_punctual ? u_frame.emitter_count + u_frame.light_count : u_frame.emitter_count; }
+
+// What punctual light `l` casts at x: the unit direction towards it, its distance (infinite for a
+// directional light), and `radiance`, the quantity that multiplies f |cos| in the contribution of
+// the light (a delta in direction): for a point or spot light I / d^2 times the spot falloff and
+// the range window, for a directional light its irradiance. KHR_lights_punctual's reference:
+//   spot falloff  a = clamp(cd scale + offset, 0, 1)^2, cd = cos of the angle from the spot's axis
+//                 (scale, offset from the cones: render/punctual_lights.h), so 0 outside the outer
+//                 cone, 1 inside the inner one and a smooth ramp between;
+//   range window  clamp(1 - (d / range)^4, 0, 1) (the extension's recommended window).
+// False where the light casts nothing at x.
+bool punctual_arrival(GpuPunctualLight l, vec3 x, out vec3 dir, out float dist, out vec3 radiance) {
+  uint type = uint(l.direction_type.w);
+  dir = -l.direction_type.xyz;
+  dist = 1.0 / 0.0;
+  radiance = l.intensity_pmf.rgb;
+  if (type == PUNCTUAL_DIRECTIONAL) return luminance(radiance) > 0.0;
+  vec3 d = l.position_range.xyz - x;
+  float dist2 = dot(d, d);
+  if (!(dist2 > 0.0)) return false;
+  dist = sqrt(dist2);
+  dir = d / dist;
+  float attenuation = 1.0 / dist2;
+  float range = l.position_range.w;
+  if (range > 0.0) {
+    float q = dist2 / (range * range);
+    attenuation *= clamp(1.0 - q * q, 0.0, 1.0);
+  }
+  if (type == PUNCTUAL_SPOT) {
+    float a = clamp(dot(l.direction_type.xyz, -dir) * l.cone.x + l.cone.y, 0.0, 1.0);
+    attenuation *= a * a;
+  }
+  radiance *= attenuation;
+  return luminance(radiance) > 0.0 && !isinf(luminance(radiance));
+}
+
+// Punctual light `light` as seen from x in either frame (its record of that frame), as a light
+// sample: `pdf` is the probability with which that frame's light table chooses it.
+bool punctual_light_at(bool prev, uint light, vec3 x, out LightSample ls) {
+  ls = light_sample_none();
+  GpuPunctualLight l = punctual_in(prev, light);
+  if (!punctual_arrival(l, x, ls.direction, ls.distance, ls.radiance)) return false;
+  ls.delta = true;
+  ls.light = light;
+  ls.pdf = (1.0 - (prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob)) * l.intensity_pmf.w;
+  return ls.pdf > 0.0;
 }
 
 const uint LIGHT_ENVIRONMENT = 0xFFFFFFFFu;
 
-// The light that random numbers u choose: LIGHT_ENVIRONMENT, or an emitter of the alias table
-// (u.z, rescaled, picks the column and its coin; u.xy is left for the point on it). False when
-// there is nothing to choose.
+// The light that random numbers u choose: LIGHT_ENVIRONMENT, or an entry of the light table (an
+// emitter below emitter_count, a punctual light from there on) by its alias table (u.z, rescaled,
+// picks the column and its coin; u.xy is left for the point on it). False when there is nothing
+// to choose.
 bool choose_light(vec3 u, out uint index) {
   index = LIGHT_ENVIRONMENT;
-  if (u.z < u_frame.env_select_prob || u_frame.emitter_count == 0u) return u_frame.env_select_prob > 0.0;
+  uint count = light_table_size();
+  if (u.z < u_frame.env_select_prob || count == 0u) return u_frame.env_select_prob > 0.0;
   float v = (u.z - u_frame.env_select_prob) / (1.0 - u_frame.env_select_prob);
-  float scaled = v * float(u_frame.emitter_count);
-  uint column = min(uint(scaled), u_frame.emitter_count - 1u);
+  float scaled = v * float(count);
+  uint column = min(uint(scaled), count - 1u);
   float coin = scaled - float(column);
   GpuAliasEntry entry = b_alias[column];
   index = coin < entry.threshold ? column : entry.alias;
@@ -123,6 +190,7 @@ bool sample_light(vec3 x, vec3 u, out LightSample ls) {
     ls = environment_light_sample(u);
     return true;
   }
+  if (k_punctual && index >= u_frame.emitter_count) return punctual_light_at(false, index - u_frame.emitter_count, x, ls);
   GpuEmitter e = b_emitters[index];
 
   vec2 b = sample_triangle_barycentrics(u.xy);
@@ -158,7 +226,8 @@ bool sample_light(vec3 x, vec3 u, out LightSample ls) {
 // Light sample u from x in either frame (the NEE end of a replayed suffix, restir/suffix_replay.glsl).
 // The current frame's is the initial pass's sample_light;
 // in the previous frame the same emitter and barycentrics are chosen and the point is placed on
-// its triangle as the previous frame's instance transform had it (resolve_surface).
+// its triangle as the previous frame's instance transform had it (resolve_surface); the same
+// punctual light is where the previous frame's record has it.
 bool sample_light_in(bool prev, vec3 x, vec3 u, out LightSample ls) {
   if (!prev) return sample_light(x, u, ls);
   ls = light_sample_none();
@@ -169,6 +238,7 @@ bool sample_light_in(bool prev, vec3 x, vec3 u, out LightSample ls) {
     ls.pdf = light_pdf_environment(true);
     return ls.pdf > 0.0;
   }
+  if (k_punctual && index >= u_frame.emitter_count) return punctual_light_at(true, index - u_frame.emitter_count, x, ls);
   GpuEmitter e = b_emitters[index];
   vec2 b = sample_triangle_barycentrics(u.xy);
   SurfacePoint p;

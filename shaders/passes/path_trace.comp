@@ -2,7 +2,8 @@
 // Pass `path_trace`: the reference unidirectional path tracer (method `pt`). Box-filtered subpixel
 // jitter, optional thin lens, optional motion blur (shutter time uniform over the shutter, the camera
 // at that time: Eq. 9 of RS-main integrated by Monte Carlo), next-event estimation to emitters and the environment combined with
-// BSDF sampling by the power heuristic, Russian roulette. Adds `sample_count` samples per
+// BSDF sampling by the power heuristic (a punctual light, which BSDF sampling never finds, with
+// weight 1: NEE is its only strategy), Russian roulette. Adds `sample_count` samples per
 // pixel to the accumulation buffer (rgb sum, a = sample count).
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
@@ -90,7 +91,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     vec3 x = offset_ray_origin(s.position, ng);
 
     // Next-event estimation, MIS-weighted against BSDF sampling.
-    if (k_emitters || k_env_nee) {
+    if (k_emitters || k_env_nee || k_punctual) {
       LightSample ls;
       vec3 ul = vec3(rng_next_float2(rng), rng_next_float(rng));
       if (sample_light(s.position, ul, ls) && dot(ls.direction, ng) > 0.0) {
@@ -100,7 +101,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
           float t_max = isinf(ls.distance) ? RAY_UNBOUNDED : ls.distance * (1.0 - SHADOW_RAY_SHORTEN);
           g_rays_shadow++;
           if (trace_visible(x, ls.direction, t_max)) {
-            float w = mis_power(ls.pdf, bsdf_pdf(bsdf, wo, wi));
+            float w = k_punctual && ls.delta ? 1.0 : mis_power(ls.pdf, bsdf_pdf(bsdf, wo, wi));
             radiance += throughput * f * ls.radiance * (w / ls.pdf);
           }
         }

@@ -149,6 +149,7 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
       LightSample ls;
       vec3 ul = vec3(rng_dim(key, base), rng_dim(key, base + 1u), rng_dim(key, base + 2u));
       if (!sample_light(v.position, ul, ls)) continue;
+      bool delta = k_punctual && ls.delta;  // a punctual light (cos_light 1)
       // Grazing light samples are outside every path structure (path_vertex.glsl): energy at
       // |cos| < SHIFT_MIN_COS, a 1e-6 fraction of a Lambertian emitter's output, is not sampled by NEE.
       if (!isinf(ls.distance) && ls.cos_light < SHIFT_MIN_COS) continue;
@@ -157,11 +158,11 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
       float t_max = isinf(ls.distance) ? RAY_UNBOUNDED : ls.distance * (1.0 - SHADOW_RAY_SHORTEN);
       g_rays++;
       if (!trace_visible(spawn(v), ls.direction, t_max)) continue;
-      float m = technique_weight(true, ls.pdf, scatter_pdf(v, ls.direction));
+      float m = delta ? 1.0 : technique_weight(true, ls.pdf, scatter_pdf(v, ls.direction));
       vec3 f = f_prefix * fs * ls.radiance * m;
       PathSample c = y;
       c.segments = n;
-      c.flags |= SAMPLE_NEE | (isinf(ls.distance) ? SAMPLE_ESCAPED : 0u);
+      c.flags |= SAMPLE_NEE | (delta ? SAMPLE_PUNCTUAL : (isinf(ls.distance) ? SAMPLE_ESCAPED : 0u));
       c.light_index = j;
       if (kf != 0u) {
         c.k = kf;
@@ -179,7 +180,11 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
         c.xk_direction = ls.direction;
         c.xk_radiance = ls.radiance;
         c.light_pdf_end = ls.pdf;
-        if (isinf(ls.distance)) {
+        if (delta) {
+          // x_k is the light: a fixed point, no area measure at it (path_space.glsl, shift_path).
+          c.xk.triangle = ls.light;
+          c.density = pdf_replay;
+        } else if (isinf(ls.distance)) {
           c.density = pdf_replay;
         } else {
           c.xk.instance = ls.instance;

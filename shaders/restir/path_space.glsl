@@ -193,7 +193,8 @@ PathSample shifted_sample(PathSample y, ShiftResult s) {
   return y;
 }
 
-// Whether y_{k-1} = v sees x_k (at `dist` along d; an escaped end: the environment along d).
+// Whether y_{k-1} = v sees x_k (at `dist` along d). `to_light`: x_k is no surface: the environment
+// along d, or a punctual light `dist` away (infinite for a directional light), which any hit blocks.
 // A visibility ray aimed at a point on a surface can hit that same surface just short of it: the
 // traversal's intersection and the resolved point differ by rounding (on lavapipe by 1e-4 of the
 // distance and more on rotated instances, where 0.5-1% of the temporal shifts of a static
@@ -202,10 +203,12 @@ PathSample shifted_sample(PathSample y, ShiftResult s) {
 // own mesh part within RECONNECT_SELF_TOLERANCE of the distance (restir/thresholds.h). Both
 // queries go through the single call site of trace_query_in. A blocking hit that the first query
 // reports short of that band settles it without the second: the closest hit lies no farther.
-bool reconnection_visible(bool prev, Vertex v, vec3 d, float dist, bool to_environment, SurfacePoint xk, INOUT(uint) rays) {
+bool reconnection_visible(bool prev, Vertex v, vec3 d, float dist, bool to_light, SurfacePoint xk, INOUT(uint) rays) {
+  bool to_environment = to_light;
   for (uint attempt = 0u; attempt < 2u; ++attempt) {
     bool any_hit = attempt == 0u;
     float t_max = to_environment ? RAY_UNBOUNDED : (any_hit ? dist * (1.0 - SHADOW_RAY_SHORTEN) : dist * (1.0 + RECONNECT_SELF_TOLERANCE));
+    if (k_punctual && to_light && dist > 0.0 && !isinf(dist)) t_max = dist * (1.0 - SHADOW_RAY_SHORTEN);  // a point or spot light
     RayHit h;
     rays++;
     bool hit = trace_query_in(prev, spawn(v), d, t_max, any_hit, h);
@@ -260,6 +263,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
   uint k = y.k;
   bool escaped = (y.flags & SAMPLE_ESCAPED) != 0u;
   bool nee = (y.flags & SAMPLE_NEE) != 0u;
+  bool punctual = k_punctual && (y.flags & SAMPLE_PUNCTUAL) != 0u;  // an NEE end at a punctual light
   // Paths of one segment are not resampled (restir_initial.comp): no reservoir holds one.
   if (n < 2u || n > restir_max_segments() || k > n || k == 1u) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
   bool has_suffix = k != 0u && k < n;
@@ -351,8 +355,20 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
     float xk_jacobian = 1.0;  // |d tau / dx_k| in barycentric measure (1: x_k's triangle kept)
     Vertex xk;
     bool to_environment = escaped && k == n;
+    bool to_punctual = punctual && k == n;
+    LightSample lk = light_sample_none();  // x_k as a punctual light
     if (to_environment) {
       d = y.xk_direction;
+    } else if (to_punctual) {
+      // x_k is the light, where the target frame's record has it. A fixed point: the reconnection
+      // Jacobian (Lin 2022 Eq. 41, |dy_k/dx_k| = (cos theta_y / cos theta_x) (|x_k - x_{k-1}|^2 /
+      // |y_k - y_{k-1}|^2)) is that of a vertex that does not move in its own measure, the
+      // counting measure over the lights, so no cos / dist^2 or area factor enters the density
+      // (geometry = area = 1) and the Jacobian is the ratio of the replayed prefix densities alone;
+      // 1/d^2 and the spot falloff are in the target function, through lk.radiance.
+      if (!punctual_light_at(prev, y.xk.triangle, v.position, lk)) return shift_fail(r, SHIFT_FAIL_ZERO);
+      d = lk.direction;
+      dist = lk.distance;
     } else {
       // x_k moves with its object; across a LoD switch tau maps it (LOD 4.4, "LoD-aware hybrid shift").
       ResolvedSurface rk = resolve_surface_as(prev, y.xk, LOD_VERTEX_RECONNECTION);
@@ -384,8 +400,16 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
     vec3 tail = vec3(0.0);
     vec3 dk = vec3(0.0);  // k < n: the direction leaving x_k, kept in its surface frame
     vec3 fk = vec3(0.0);
+    bool punctual_end = punctual && k + 1u == n;  // x_{k+1} is a punctual light: omega_k points at it
     if (k < n) {
       dk = surface_to_world(xk, y.xk_direction);
+#ifdef STRATA_HISTORY
+      if (punctual_end && replay) {
+        // The light where the target frame has it, seen from x_k there (restir/suffix_replay.glsl).
+        if (!punctual_end_direction(prev, y, xk, dk)) return shift_fail(r, SHIFT_FAIL_REPLAY);
+        r.xk_direction = surface_to_local(xk, dk);
+      }
+#endif
 #ifdef STRATA_HISTORY
       if (xk.point.lod != y.xk.lod) {
         // A mapped x_k: omega_k fixed to the object (object_fixed_direction).
@@ -402,19 +426,22 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
 #endif
       if (!replay) {
         float m = 1.0;
-        if (k + 1u == n) m = technique_weight(nee, y.light_pdf_end, scatter_pdf(xk, dk));
+        if (k + 1u == n && !punctual_end) m = technique_weight(nee, y.light_pdf_end, scatter_pdf(xk, dk));
         tail = fk * y.xk_radiance * m;
         r.suffix = SUFFIX_KEPT;
       }
     } else if (to_environment) {
       if (!nee && !rule_end(v, true, 0.0, camera_distance, 1.0)) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
       tail = environment_radiance(d) * technique_weight(nee, light_pdf_environment(prev), scatter_pdf(v, d));
+    } else if (to_punctual) {
+      tail = lk.radiance;  // NEE is the light's only strategy: MIS weight 1
+      r.light_pdf_end = lk.pdf;
     } else {
       float pl_k = light_pdf_emitter(prev, xk.material_emission, xk.area, xk.double_sided, dist, xk.cos_in);
       tail = xk.emission * technique_weight(nee, pl_k, scatter_pdf(v, d));
     }
     if (!replay && !(luminance(tail) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);
-    if (!reconnection_visible(prev, v, d, dist, to_environment, r.xk, r.rays)) return shift_fail(r, SHIFT_FAIL_OCCLUDED);
+    if (!reconnection_visible(prev, v, d, dist, to_environment || to_punctual, r.xk, r.rays)) return shift_fail(r, SHIFT_FAIL_OCCLUDED);
 #ifdef STRATA_HISTORY
     if (replay) {
       // The suffix in this frame (restir/suffix_replay.glsl), after the cheaper tests passed.
@@ -424,7 +451,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
       r.suffix = SUFFIX_REPLAYED;
       if (sr.reason != SHIFT_OK) return shift_fail(r, sr.reason);
       float m = 1.0;
-      if (k + 1u == n) m = technique_weight(nee, sr.light_pdf_end, scatter_pdf(xk, dk));
+      if (k + 1u == n && !punctual_end) m = technique_weight(nee, sr.light_pdf_end, scatter_pdf(xk, dk));
       tail = fk * sr.xk_radiance * m;
       r.xk_radiance = sr.xk_radiance;
       r.light_pdf_end = sr.light_pdf_end;

@@ -38,6 +38,8 @@ CONST_DEF uint SAMPLE_EMITTER_HIT = 2u;   // the path ends by hitting an emitter
 CONST_DEF uint SAMPLE_ESCAPED = 4u;       // the path ends in the environment
 CONST_DEF uint SAMPLE_NEE = 8u;           // the last vertex was chosen by next-event estimation
 CONST_DEF uint SAMPLE_XK_IS_LAST = 16u;   // x_k is the path's last vertex (k == segments)
+CONST_DEF uint SAMPLE_PUNCTUAL = 32u;     // the path ends at a punctual light chosen by NEE; when it is x_k
+                                          // (k == segments) x_k is no surface and its `triangle` is the light's index
 
 struct SurfacePoint {
   uint instance;   // SURFACE_NONE: no surface
@@ -123,6 +125,7 @@ INLINE SurfacePoint unpack_surface(uvec4 w, uint lod) {
   SurfacePoint s;
   if (w.x == SURFACE_NONE) {
     s = surface_none();
+    s.triangle = w.y;  // a punctual light's index (SAMPLE_PUNCTUAL), else 0
     return s;
   }
   s.instance = w.x & ((1u << SURFACE_INSTANCE_BITS) - 1u);

@@ -58,8 +58,33 @@ SuffixReplay replay_fail(SuffixReplay r, uint reason) {
 // later vertices are not known without tracing them.
 bool suffix_unchanged(bool prev, PathSample y, Vertex xk, vec3 dk) {
   if (y.k + 1u != y.segments || instance_changes(y.xk.instance) != 0u) return false;
+  // An end at a punctual light that moved is not where the stored suffix has it.
+  if (k_punctual && (y.flags & SAMPLE_PUNCTUAL) != 0u && (history_flags() & HISTORY_LIGHTS_MOVED) != 0u) return false;
   if (!light_totals_unchanged()) return false;
   return !ray_meets_change(prev, xk.position, dk);
+}
+
+// The light sample that y's NEE end took at y_{n-1} (candidate y.light_index, its random numbers), from
+// `x` in the current (prev = false) or previous frame: the same light while the light table chooses
+// as it did (HISTORY_LIGHTS_RESELECTED), where that frame has it.
+bool replay_light_sample(bool prev, PathSample y, vec3 x, out LightSample ls) {
+  ls = light_sample_none();
+  if ((history_flags() & HISTORY_LIGHTS_RESELECTED) != 0u) return false;
+  uint base = dim_vertex(y.segments - 1u) + DIM_NEE + 3u * y.light_index;
+  vec3 ul = vec3(rng_dim(y.seed, base), rng_dim(y.seed, base + 1u), rng_dim(y.seed, base + 2u));
+  return sample_light_in(prev, x, ul, ls);
+}
+
+// omega'_k of a suffix whose one segment ends at a punctual light (k + 1 = n, SAMPLE_PUNCTUAL): the
+// direction from x_k (`xk`, in the target frame) to where that frame has the light. The light is
+// x_{k+1}, a fixed point (Jacobian 1, as in shift_path's reconnection to one), so omega'_k is not a
+// free dimension of the path and is not kept. False where the light is not the one y chose.
+bool punctual_end_direction(bool prev, PathSample y, Vertex xk, out vec3 dk) {
+  LightSample ls;
+  dk = vec3(0.0, 0.0, 1.0);
+  if (!replay_light_sample(prev, y, xk.position, ls) || !ls.delta) return false;
+  dk = ls.direction;
+  return true;
 }
 
 // Traces y's suffix from x_k (`xk`, loaded in the target frame and entered from the offset path's
@@ -80,15 +105,17 @@ SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {
   float pdf = 0.0;        // density of `dir` at y_j (j > k)
   // Segment j leaves y_j. Every segment is one query at a single call site: a closest hit while
   // the path goes on, or the visibility of the light sample of an NEE end.
+  bool punctual = k_punctual && (y.flags & SAMPLE_PUNCTUAL) != 0u;  // the NEE end is a punctual light
   for (uint j = y.k; j < n; ++j) {
     bool last = j + 1u == n;
-    bool light_sample = last && nee && j > y.k;
+    // An NEE end is the light sample again; from x_k itself only a punctual light's (any other
+    // end found from x_k lies along the kept omega'_k).
+    bool light_sample = last && nee && (j > y.k || punctual);
     LightSample ls = light_sample_none();
     if (light_sample) {
       if ((history_flags() & HISTORY_LIGHTS_RESELECTED) != 0u) return replay_fail(r, SHIFT_FAIL_STALE);
-      uint base = dim_vertex(j) + DIM_NEE + 3u * y.light_index;
-      vec3 ul = vec3(rng_dim(y.seed, base), rng_dim(y.seed, base + 1u), rng_dim(y.seed, base + 2u));
-      if (!sample_light_in(prev, v.position, ul, ls)) return replay_fail(r, SHIFT_FAIL_REPLAY);
+      if (!replay_light_sample(prev, y, v.position, ls)) return replay_fail(r, SHIFT_FAIL_REPLAY);
+      if (punctual != ls.delta) return replay_fail(r, SHIFT_FAIL_REPLAY);
       // NEE does not sample grazing light (restir_initial.comp): outside the structure.
       if (!isinf(ls.distance) && ls.cos_light < SHIFT_MIN_COS) return replay_fail(r, SHIFT_FAIL_STRUCTURE);
       dir = ls.direction;
@@ -104,10 +131,17 @@ SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {
     bool hit = trace_query_in(prev, spawn(v), dir, t_max, light_sample, h);
     if (light_sample) {
       if (hit) return replay_fail(r, SHIFT_FAIL_OCCLUDED);
+      r.light_pdf_end = ls.pdf;
+      if (j == y.k) {
+        // A punctual light seen from x_k: shift_path applies x_k's BSDF (its omega'_k points here)
+        // and the MIS weight 1 of a delta light; nothing after x_k was sampled.
+        r.xk_radiance = ls.radiance;
+        return r;
+      }
       vec3 fs = scatter(v, dir);
       if (!(luminance(fs) > 0.0)) return replay_fail(r, SHIFT_FAIL_ZERO);
-      r.xk_radiance = beta * fs * ls.radiance * technique_weight(true, ls.pdf, scatter_pdf(v, dir));
-      r.light_pdf_end = ls.pdf;
+      float m = punctual ? 1.0 : technique_weight(true, ls.pdf, scatter_pdf(v, dir));
+      r.xk_radiance = beta * fs * ls.radiance * m;
       r.suffix_density *= ls.pdf;
       return r;
     }

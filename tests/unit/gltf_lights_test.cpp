@@ -1,6 +1,9 @@
 // KHR_lights_punctual into Scene::lights: types, units and cones as the extension defines them,
 // attached to nodes (world transform at rest, node animation as a LightTrack), bad values refused
 // naming the field and the value.
+#include <cmath>
+#include <functional>
+
 #include <gtest/gtest.h>
 
 #include "gltf_test_builder.h"
@@ -93,6 +96,30 @@ TEST(GltfLights, BadValuesAreRefusedNamingTheField) {
   EXPECT_NE(error_of(g).find("nodes[3].extensions.KHR_lights_punctual.light = 9 is out of range (3 lights)"),
             std::string::npos)
       << error_of(g);
+}
+
+// Scene::validate (built-in scenes, and every loader before it returns) refuses the values the
+// device could not evaluate: a non-finite intensity, a spot whose cones meet or cross.
+TEST(GltfLights, SceneValidateRefusesNonFiniteAndCrossedCones) {
+  const Scene lit = load_glb_bytes(lit_quad().glb(), "l.glb");
+  auto error = [&](const std::function<void(Scene&)>& edit) -> std::string {
+    Scene s = lit;
+    edit(s);
+    try {
+      s.validate();
+    } catch (const SceneError& e) {
+      return e.what();
+    }
+    return "(valid)";
+  };
+  EXPECT_NE(error([](Scene& s) { s.lights[0].intensity = std::nanf(""); }).find("lights[0].intensity"), std::string::npos);
+  EXPECT_NE(error([](Scene& s) { s.lights[0].intensity = INFINITY; }).find("lights[0].intensity"), std::string::npos);
+  EXPECT_NE(error([](Scene& s) { s.lights[0].color.g = std::nanf(""); }).find("lights[0].color"), std::string::npos);
+  EXPECT_NE(error([](Scene& s) { s.lights[0].range = -1.0f; }).find("lights[0].range"), std::string::npos);
+  EXPECT_NE(error([](Scene& s) { s.lights[1].inner_cone = s.lights[1].outer_cone; }).find("lights[1].inner_cone"),
+            std::string::npos);
+  EXPECT_NE(error([](Scene& s) { s.lights[1].outer_cone = std::nanf(""); }).find("lights[1].outer_cone"), std::string::npos);
+  EXPECT_EQ(error([](Scene&) {}), "(valid)");
 }
 
 }  // namespace
