@@ -36,7 +36,7 @@ struct MethodFrame {
   uint64_t sample_base;  // samples already accumulated for this frame state
   bool env_nee;          // the environment is sampled by next-event estimation
   bool history_valid;    // the scene's previous slot holds the previous frame (GpuScene::history_valid)
-  bool scene_moved;      // some transform or LoD level changed since the previous frame
+  bool scene_moved;      // some transform, LoD level or punctual light changed since the previous frame
 };
 
 class Method {

@@ -2,7 +2,8 @@
 // Layout: node i is instance i (with `matrix`, or TRS plus extras.strata.rest_matrix when it is
 // animated, as glTF forbids `matrix` on animated nodes), then the camera node; both are the
 // scene's roots. Extra LoD levels are nodes outside the scene, named by the instance's MSFT_lod
-// ids. The default animation is one glTF animation: T/R/S channels per track, T/R channels on
+// ids; then one node per punctual light (KHR_lights_punctual, its rest transform as `matrix`; a
+// light track is not written). The default animation is one glTF animation: T/R/S channels per track, T/R channels on
 // the camera node. Everything else strata needs rides in extras (see gltf_extras.h).
 // Exactness: floats go into float accessors or into JSON as doubles (which read back exactly);
 // an emission above 1 is split into emissiveFactor * emissiveStrength in double precision.
@@ -249,6 +250,29 @@ void add_nodes(GlbBuilder& b, const Scene& s) {
     m.nodes[i].extensions[kLodExtension] =
         tinygltf::Value(tinygltf::Value::Object{{"ids", tinygltf::Value(ids)}});
     b.use_extension(kLodExtension);
+  }
+  for (size_t i = 0; i < s.lights.size(); ++i) {
+    const Light& light = s.lights[i];
+    tinygltf::Light out;
+    out.name = light.name;
+    out.type = light.type == LightType::kPoint ? "point" : light.type == LightType::kSpot ? "spot" : "directional";
+    out.color = doubles({light.color.r, light.color.g, light.color.b});
+    out.intensity = light.intensity;
+    out.range = light.range;
+    if (light.type == LightType::kSpot) {
+      out.spot.innerConeAngle = light.inner_cone;
+      out.spot.outerConeAngle = light.outer_cone;
+    }
+    m.lights.push_back(out);  // tinygltf writes them as KHR_lights_punctual and lists the extension
+    tinygltf::Node node;
+    node.name = light.name;
+    for (int c = 0; c < 4; ++c) {
+      for (int r = 0; r < 4; ++r) node.matrix.push_back(light.transform[c][r]);
+    }
+    node.extensions["KHR_lights_punctual"] =
+        tinygltf::Value(tinygltf::Value::Object{{"light", tinygltf::Value(static_cast<int>(i))}});
+    m.nodes.push_back(node);
+    scene.nodes.push_back(static_cast<int>(m.nodes.size() - 1));
   }
   m.scenes.push_back(scene);
   m.defaultScene = 0;

@@ -5,6 +5,7 @@
 namespace strata::scene::builtin {
 
 Scene make_cornell();
+Scene make_cornell_lamps();  // cornell lit by punctual lights
 Scene make_carousel();
 Scene make_carousel_bounce();
 Scene make_lod_cliff();

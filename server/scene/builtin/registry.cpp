@@ -11,8 +11,9 @@ namespace {
 
 using Generator = Scene (*)();
 // The order is the order builtin_scene_names() reports; cornell, the default, comes first.
-constexpr std::array<std::pair<const char*, Generator>, 9> kBuiltins = {{
+constexpr std::array<std::pair<const char*, Generator>, 10> kBuiltins = {{
     {"cornell", builtin::make_cornell},
+    {"cornell-lamps", builtin::make_cornell_lamps},
     {"carousel", builtin::make_carousel},
     {"carousel-bounce", builtin::make_carousel_bounce},
     {"lod-cliff", builtin::make_lod_cliff},
