@@ -10,6 +10,7 @@
 #include "render/method_table.h"
 #include "scene/transform.h"
 #include "service/errors.h"
+#include "service/method_auto.h"
 #include "service/options.h"
 #include "service/scene_source.h"
 #include "service/session_spec.h"
@@ -102,8 +103,8 @@ void ViewerStream::hello(const nlohmann::json& msg) {
   const auto& l = core_.config.limits;
   nlohmann::json reply = {{"type", "hello"},
                           {"device", core_.ctx.device_name()},
-                          {"methods", render::available_methods()},
-                          {"default_method", render::k_default_method},
+                          {"methods", service::session_methods()},
+                          {"default_method", service::k_auto_method},
                           {"scenes", scenes},
                           {"options", viewer_options_json()},
                           {"limits", {{"max_sessions", l.max_sessions}, {"max_dimension", l.max_dimension}, {"max_pixels", l.max_pixels}}}};
@@ -190,7 +191,7 @@ void ViewerStream::input(const nlohmann::json& msg) {
                                  std::to_string(last));
   if (!in.encodings().empty()) fail_invalid("input.encodings: the viewer's frames are JPEG; leave encodings empty");
   service::PendingInput p = service::parse_frame_input(in, s->scene(), core_.config.limits);
-  service::check_method_options(s->method(), p.options, "input.options", s->method_defaulted());
+  service::check_method_options(s->checked_method(), p.options, "input.options", s->auto_method());
   s->note_input(in.sequence());
   bool enqueue = false;
   {
