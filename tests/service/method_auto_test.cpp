@@ -189,6 +189,39 @@ TEST_F(MethodAutoTest, AutoCalibratesAgainWhenTheResolutionChanges) {
   EXPECT_NE(m->reason().find("the resolution changed"), std::string::npos) << m->reason();
 }
 
+// Moving an instance that emits light makes auto calibrate again; moving another one does not.
+TEST_F(MethodAutoTest, AutoCalibratesAgainWhenALightMoves) {
+  const v1::Session s = create_ok(stub(), auto_request("cornell", "auto", 16));  // instances: room, tall_box, short_box, light
+  auto moved = [](uint32_t id) {
+    v1::InstanceTransform t;
+    t.set_instance_id(id);
+    t.mutable_translation()->set_x(0.05f);
+    t.mutable_rotation()->set_w(1.0f);
+    t.mutable_scale()->set_x(1.0f);
+    t.mutable_scale()->set_y(1.0f);
+    t.mutable_scale()->set_z(1.0f);
+    return t;
+  };
+  StreamClient c(stub());
+  const uint32_t n = service::k_auto_calibration_frames;
+  std::vector<v1::Frame> frames;
+  for (uint32_t f = 0; f < n + 2; ++f) {
+    v1::FrameInput in = frame_input(f + 1, f == 0 ? s.name() : "");
+    if (f == n) *in.add_transforms() = moved(1);      // the tall box
+    if (f == n + 1) *in.add_transforms() = moved(3);  // the light
+    ASSERT_TRUE(c.send(in));
+    auto frame = c.read();
+    ASSERT_TRUE(frame.has_value());
+    frames.push_back(*frame);
+  }
+  ASSERT_TRUE(c.close().ok());
+  EXPECT_FALSE(frames[n].history_reset()) << frames[n].history_reset_reason();
+  EXPECT_TRUE(frames[n + 1].history_reset());
+  EXPECT_NE(frames[n + 1].history_reset_reason().find("method auto calibrates again: instance 3, which emits light, moved"),
+            std::string::npos)
+      << frames[n + 1].history_reset_reason();
+}
+
 // spp > 1 with auto names the method auto may choose, and pt.
 TEST_F(MethodAutoTest, AutoRefusesSppAboveOneNamingWhatItMayChoose) {
   auto req = auto_request("cornell", "", 16);
