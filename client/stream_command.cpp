@@ -36,7 +36,7 @@ struct StreamArgs {
   std::string scene = "cornell";
   std::string scene_file;  // a local .glb sent inline
   std::string scene_path;  // a file in the server's scene directory
-  std::string method;  // empty: the server's default method (restir-gather)
+  std::string method;  // empty: the server's default, auto (pt or restir-gather, measured on the scene)
   uint32_t width = 256, height = 256, frames = 30, spp = 1, seed = 0, in_flight = 1;
   uint32_t max_depth = 0;  // 0: the server's default
   float exposure = 0.0f;
@@ -233,7 +233,8 @@ Runner add_stream_command(CLI::App& app) {
   cmd->add_option("--scene-path", a->scene_path, "a .gltf/.glb file in the server's --scene-dir");
   cmd->add_option("--method", a->method,
                   "rendering method: one of the server's (ServerStatus.methods; stratad render --help describes each); "
-                  "default: the server's default, restir-gather (spp must then be 1; --method pt for more)");
+                  "default: the server's default, auto: it measures pt and restir-gather on the scene's first frames and keeps "
+                  "the one with the lower error at equal time (spp must then be 1; --method pt for more)");
   cmd->add_option("--width", a->width, "image width")->capture_default_str();
   cmd->add_option("--height", a->height, "image height")->capture_default_str();
   auto* frames = cmd->add_option("--frames", a->frames, "frames to stream (default: the camera path's length)")->capture_default_str();

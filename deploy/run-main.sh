@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job: starts `stratad serve` on 127.0.0.1 (a free port), waits until its health is
-# SERVING, streams carousel (objects and the camera move) with the default method (restir-gather,
-# render::k_default_method; its figures against pt: docs/BENCHMARKS.md) with `strata stream` into out/main
+# SERVING, streams carousel (objects and the camera move) with the default method, auto (the
+# session measures pt and restir-gather on its first frames and keeps the one with the lower error at
+# equal time; docs/ARCHITECTURE.md, "Method auto") with `strata stream` into out/main
 # (frame_NNNN.exr, frame_NNNN.png, frames.json), then stops the server with SIGTERM (graceful drain). Exits non-zero
 # on any failure. STRATA_BUILD (default build/release) and STRATA_OUT (default out/main) override
 # the build and output folders.

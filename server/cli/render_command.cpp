@@ -102,7 +102,7 @@ Runner add_render_command(CLI::App& app) {
   auto a = std::make_shared<RenderArgs>();
   auto* cmd = app.add_subcommand("render", "render frames in-process and write EXR, PNG and frames.json");
   cmd->add_option("--scene", a->scene, "built-in scene name or .gltf/.glb path")->capture_default_str();
-  a->settings.method = render::k_default_method;  // as a session's (spp must then be 1; --method pt for more)
+  a->settings.method = render::k_default_method;  // restir-gather (spp must then be 1; --method pt for more)
   cmd->add_option("--method", a->settings.method, "rendering method:" + render::method_help())->capture_default_str();
   cmd->add_option("--width", a->settings.width, "image width")->capture_default_str();
   cmd->add_option("--height", a->settings.height, "image height")->capture_default_str();

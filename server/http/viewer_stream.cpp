@@ -11,6 +11,7 @@
 #include "render/method_table.h"
 #include "scene/transform.h"
 #include "service/errors.h"
+#include "service/method_auto.h"
 #include "service/options.h"
 #include "service/scene_source.h"
 #include "service/session_spec.h"
@@ -104,8 +105,8 @@ void ViewerStream::hello(const nlohmann::json& msg) {
   const auto& l = core_.config.limits;
   nlohmann::json reply = {{"type", "hello"},
                           {"device", core_.ctx.device_name()},
-                          {"methods", render::available_methods()},
-                          {"default_method", render::k_default_method},
+                          {"methods", service::session_methods()},
+                          {"default_method", service::k_auto_method},
                           {"domain_map_methods", domain_map_methods()},
                           {"scenes", scenes},
                           {"options", viewer_options_json()},
@@ -197,7 +198,7 @@ void ViewerStream::input(const nlohmann::json& msg) {
                                  std::to_string(last));
   if (!in.encodings().empty()) fail_invalid("input.encodings: the viewer's frames are JPEG; leave encodings empty");
   service::PendingInput p = service::parse_frame_input(in, s->scene(), core_.config.limits);
-  service::check_method_options(s->method(), p.options, "input.options", s->method_defaulted());
+  service::check_method_options(s->checked_method(), p.options, "input.options", s->auto_method());
   s->note_input(in.sequence());
   bool enqueue = false;
   {

@@ -91,7 +91,7 @@ const OptionSpec k_table[] = {
     {.name = "spatial_reuse", .kind = Kind::flag, .flag = "--no-spatial", .negated_flag = true,
      .help = "reuse the neighbours' reservoirs", .sets = "the spatial stage and its buffers", STRATA_MEMBER(spatial)},
     {.name = "confidence_cap", .kind = Kind::real, .lo = gpu::RESTIR_MIN_CONFIDENCE_CAP, .hi = gpu::RESTIR_MAX_CONFIDENCE_CAP,
-     .limit = "RESTIR_MAX_CONFIDENCE_CAP", .default_from = DefaultFrom::method, .default_text = "the method's: 2 (restir-di: 4)",
+     .limit = "RESTIR_MAX_CONFIDENCE_CAP", .default_from = DefaultFrom::method, .default_text = "the method's: 2 (restir-di: 4); method auto: 4 where pt's error per sample shows the light is hard to find",
      .flag = "--confidence-cap", .help = "cap of the temporal history's confidence where something moved",
      .sets = "GpuRestirConstants.confidence_cap", STRATA_MEMBER(confidence_cap), .restir_zero = "the method's"},
     {.name = "still_confidence_cap", .kind = Kind::real, .lo = gpu::RESTIR_MIN_CONFIDENCE_CAP, .hi = gpu::RESTIR_MAX_CONFIDENCE_CAP,

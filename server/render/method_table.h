@@ -49,17 +49,10 @@ std::vector<std::string> available_methods();
 std::string method_names();
 // One line per method, "name: summary", for --help.
 std::string method_help();
-// The method a session, `stratad render` and `strata stream` use when none is named. It became the
-// default when it won at equal time against a pt whose light selection wasted half its samples;
-// against the fixed pt it wins where the light is hard to find and on cornell, and loses where pt's
-// light samples find the light (k_default_method_reason; docs/BENCHMARKS.md, "restir-gather against
-// pt"). It stays the default because ReSTIR is what the service is built for; whether pt should be
-// the default again depends on the scenes its users render, and is left open.
+// The method `stratad render` uses when none is named. A session's default is `method auto`
+// (service/method_auto.h), which measures pt and this method on the session's scene and keeps the
+// one with the lower error at equal time; `stratad render` renders in-process without that
+// calibration and takes the ReSTIR method the service is built for.
 inline constexpr const char* k_default_method = "restir-gather";
-// Why, as the session's `method` decision says it when the client named none.
-inline constexpr const char* k_default_method_reason =
-    "the default: ReSTIR PT, the method the service is built for; its RelMSE over pt's at equal GPU time on lavapipe, "
-    "256x256: cornell 0.21-0.36, carousel 0.87-0.94, chess 1.1-1.45, foliage 3.3-3.5, carousel-bounce (light one bounce away) 0.24 "
-    "(docs/BENCHMARKS.md); pt wins where its light samples find the light and reuse costs as much as the samples it replaces";
 
 }  // namespace strata::render

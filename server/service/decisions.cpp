@@ -53,9 +53,8 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
   };
 
   const bool di = method.direct_lighting;
-  out.push_back(make("method", requested_method, m, true,
-                     requested_method.empty() ? std::string(method.summary) + "; " + render::k_default_method_reason
-                                              : std::string(method.summary)));
+  // `method auto` rewrites this decision with its choice and figures (service/method_auto.h).
+  out.push_back(make("method", requested_method, m, true, method.summary));
   out.push_back(make("spp", asked(req.has_spp(), u(req.spp())), u(eff.spp()), true,
                      method.reuse ? "one reservoir per pixel, shaded once per frame (spp must be 1)" : "samples per pixel per frame"));
   out.push_back(make("max_depth", asked(req.has_max_depth(), u(req.max_depth())), u(eff.max_depth()), true,

@@ -6,6 +6,7 @@
 #include "options/option_proto.h"
 #include "render/method_table.h"
 #include "service/errors.h"
+#include "service/method_auto.h"
 
 namespace strata::service {
 namespace {
@@ -30,11 +31,15 @@ std::string enum_names(const options::OptionSpec& o) {
 
 }  // namespace
 
+bool is_auto_method(const std::string& requested) { return requested.empty() || requested == k_auto_method; }
+
 const render::MethodSpec& check_method(const std::string& requested, const std::string& field) {
-  const std::string name = requested.empty() ? render::k_default_method : requested;
+  // auto calibrates with restir-gather's row: its options and what it requires of them.
+  const std::string name = is_auto_method(requested) ? k_auto_reuse : requested;
   for (const auto& m : render::method_table())
     if (name == m.name) return m;
-  fail_invalid(field + " = '" + name + "' is not a method; methods: " + render::method_names());
+  fail_invalid(field + " = '" + name + "' is not a method; methods: " + std::string(k_auto_method) + ", " +
+               render::method_names());
 }
 
 void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, const std::string& field) {
@@ -61,13 +66,14 @@ void check_method_encodings(const render::MethodSpec& method, const std::vector<
 }
 
 void check_method_options(const render::MethodSpec& method, const v1::RenderOptions& o, const std::string& field,
-                          bool defaulted) {
+                          bool auto_method) {
   if (method.reuse && o.has_spp() && o.spp() != 1)
-    fail_invalid(field + ".spp = " + std::to_string(o.spp()) + " but method " + method.name +
-                 (defaulted ? " (the default: no method was named)" : "") +
+    fail_invalid(field + ".spp = " + std::to_string(o.spp()) + " but method " +
+                 (auto_method ? std::string(k_auto_method) + " (the default when no method is named) may choose " : "") +
+                 method.name + (auto_method ? ", which" : "") +
                  " keeps one reservoir per pixel and renders 1 sample per pixel per frame (spp must be 1); use " + field +
                  ".initial_candidates for more candidates per frame" +
-                 (defaulted ? ", or method = \"pt\" for several path-traced samples per pixel" : ""));
+                 (auto_method ? ", or method = \"pt\" for several path-traced samples per pixel" : ""));
 }
 
 render::RestirOptions restir_options(const v1::RenderOptions& e) {

@@ -18,17 +18,21 @@ namespace strata::service {
 
 namespace v1 = ::strata::v1;
 
-// The method table's row (render/method_table.h) of a requested method; empty means the default
-// method. An unknown method is INVALID_ARGUMENT naming the methods there are.
+// Whether the client asked for `method auto` (service/method_auto.h): by name, or by naming none.
+bool is_auto_method(const std::string& requested);
+// The method table's row (render/method_table.h) of a requested method; for auto (empty or "auto")
+// restir-gather's, the row whose options auto's calibration runs with. An unknown method is
+// INVALID_ARGUMENT naming the methods there are.
 const render::MethodSpec& check_method(const std::string& requested, const std::string& field);
 
 // Range checks of the fields that are set (the table's ranges; spp and max_depth: the service's
 // limits); `field` prefixes the names ("options"). INVALID_ARGUMENT naming the field and the limit.
 void check_options(const v1::RenderOptions& o, const ServiceLimits& limits, const std::string& field);
 // What `method` requires of the fields that are set (the restir-* methods render spp = 1); `field`
-// prefixes the names. `defaulted`: the client named no method (the message then says which it got).
+// prefixes the names. `auto_method`: the session's method is auto, which may choose `method` (the
+// message then says so).
 void check_method_options(const render::MethodSpec& method, const v1::RenderOptions& o, const std::string& field,
-                          bool defaulted = false);
+                          bool auto_method = false);
 // DOMAIN_MAP needs a method with pixel layers (restir-multilayer): INVALID_ARGUMENT otherwise.
 void check_method_encodings(const render::MethodSpec& method, const std::vector<v1::ImageEncoding>& encodings,
                             const std::string& field);

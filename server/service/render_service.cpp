@@ -4,6 +4,7 @@
 
 #include "render/method_table.h"
 #include "service/errors.h"
+#include "service/method_auto.h"
 #include "service/scene_source.h"
 #include "service/session_spec.h"
 #include "service/stream_reactor.h"
@@ -93,7 +94,7 @@ grpc::Status RenderServiceImpl::GetServerStatus(grpc::ServerContext*, const v1::
     set_duration(lim->mutable_idle_timeout(), cfg.idle_timeout);
     lim->set_scene_dir(cfg.scene_dir.string());
     lim->set_max_reference_spp(l.max_reference_spp);
-    for (const auto& m : render::available_methods()) resp->add_methods(m);
+    for (const auto& m : session_methods()) resp->add_methods(m);
     uint64_t device_bytes = 0;
     const auto sessions = core_.registry.list();
     for (const auto& s : sessions) device_bytes += s->device_bytes();

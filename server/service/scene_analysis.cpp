@@ -34,6 +34,12 @@ float last_key_time(const scene::Animation& a) {
 
 }  // namespace
 
+bool instance_emits(const scene::Scene& s, uint32_t id) {
+  for (uint32_t mesh : s.instances.at(id).lod_meshes)
+    if (emissive_triangles_of(s, mesh) > 0) return true;
+  return false;
+}
+
 v1::SceneAnalysis analyze_scene(const scene::Scene& s) {
   v1::SceneAnalysis a;
   a.set_scene(s.name);

@@ -37,12 +37,15 @@ Session::Session(std::string name, std::shared_ptr<const scene::Scene> scene, Se
       created_(std::chrono::system_clock::now()),
       spec_(std::move(spec)) {
   settings_ = render_settings(spec_);
-  decisions_ = decide(*spec_.method, spec_.requested_method, spec_.requested, spec_.options, spec_.encodings, analysis_,
-                      measured_layers(spec_.options, spec_.width, spec_.height));
+  {
+    std::lock_guard lock(mu_);
+    redecide_locked();
+  }
   frame_state_ = scene_->frame_state(0);
   idle_since_ = created_steady_;
   std::lock_guard lock(render_mu_);
-  create_renderer_locked();
+  // `method auto` renders its first frames with its calibration's own runs.
+  if (!spec_.auto_method) create_renderer_locked();
 }
 
 Session::~Session() = default;
@@ -61,6 +64,7 @@ void Session::release_gpu() {
   std::lock_guard lock(mu_);
   if (attached_) return;  // a new stream came first: its frames use the GPU state
   renderer_.reset();
+  calibration_.reset();  // `method auto` calibrates again from the next frame
   memory_.clear();
   released_ = true;
 }
@@ -136,6 +140,16 @@ void Session::apply_locked(const PendingInput& input, std::string& reset_reason,
   next.max_depth = options.max_depth();
   next.restir = restir_options(options);
 
+  // `method auto` calibrates again where what it measured changes: the resolution, or the light.
+  std::string recalibrate;
+  if (spec_.auto_method) {
+    for (const auto& [id, m] : input.transforms)
+      if (instance_emits(*scene_, id) && m != frame_state_.transforms.at(id)) {
+        recalibrate = "instance " + std::to_string(id) + ", which emits light, moved";
+        break;
+      }
+  }
+
   // Every option the input changed (options/option_table.h, OnChange): one that applies to the
   // method re-creates the GPU state or takes effect in place; one that does not is kept and said so.
   std::string changes;
@@ -167,6 +181,10 @@ void Session::apply_locked(const PendingInput& input, std::string& reset_reason,
     settings_ = next;
     renderer_.reset();
     reset_reason += (reset_reason.empty() ? "" : "; ") + changes + " (the GPU state is re-created)";
+    if (spec_.auto_method && recalibrate.empty()) {
+      if (resized) recalibrate = "the resolution changed";
+      else if (calibration_) recalibrate = "the options changed while it calibrated";
+    }
   }
 
   const bool options_changed = input.options.ByteSizeLong() > 0 || !input.encodings.empty();
@@ -177,9 +195,11 @@ void Session::apply_locked(const PendingInput& input, std::string& reset_reason,
     spec_.width = settings_.width;
     spec_.height = settings_.height;
     if (!input.encodings.empty()) spec_.encodings = input.encodings;
-    if (options_changed)
-      decisions_ = decide(*spec_.method, spec_.requested_method, spec_.requested, spec_.options, spec_.encodings, analysis_,
-                          measured_layers(spec_.options, spec_.width, spec_.height));
+    if (options_changed) redecide_locked();
+  }
+  if (!recalibrate.empty()) {
+    recalibrate_locked(recalibrate);
+    reset_reason += (reset_reason.empty() ? "" : "; ") + std::string("method auto calibrates again: ") + recalibrate;
   }
 
   if (input.animation_frame) frame_state_ = scene_->frame_state(*input.animation_frame);
@@ -201,13 +221,18 @@ RenderedFrame Session::render(PendingInput input) {
     else if (released_) reason = "the GPU state was released when the previous stream ended and is re-created";
   }
   apply_locked(input, reason, option_changes);
-  if (!renderer_) create_renderer_locked();
+  bool calibrating = false;
+  {
+    std::lock_guard lock(mu_);
+    calibrating = spec_.auto_method && !(auto_choice_ && auto_choice_->method);
+  }
+  if (!calibrating && !renderer_) create_renderer_locked();
   // Motion blur (RS-main 4.4): the shutter opens on the way from the camera of the frame rendered
   // before; the session's first frame has none and is an instant.
   frame_state_.camera_open = last_camera_ ? scene::shutter_open_camera(*last_camera_, frame_state_.camera) : std::nullopt;
 
   RenderedFrame f;
-  f.result = renderer_->render(frame_state_, uint32_t(index));
+  f.result = calibrating ? render_calibrating_locked(index, option_changes) : renderer_->render(frame_state_, uint32_t(index));
   last_camera_ = frame_state_.camera;
   const auto done = Clock::now();
   f.frame_index = index;
@@ -237,6 +262,76 @@ RenderedFrame Session::render(PendingInput input) {
   return f;
 }
 
+void Session::recalibrate_locked(const std::string& why) {
+  renderer_.reset();
+  calibration_.reset();
+  const render::MethodSpec& reuse = render::method_spec(k_auto_reuse);
+  std::lock_guard lock(mu_);
+  auto_choice_.reset();
+  calibration_reason_ = why;
+  spec_.method = &reuse;
+  if (!spec_.requested.has_confidence_cap()) spec_.options.set_confidence_cap(reuse.confidence_cap);
+  settings_.method = reuse.name;
+  settings_.restir = restir_options(spec_.options);
+  redecide_locked();
+}
+
+render::FrameResult Session::render_calibrating_locked(uint64_t index, std::vector<v1::Decision>& option_changes) {
+  if (!calibration_) {
+    std::optional<float> cap;
+    {
+      std::lock_guard lock(mu_);
+      if (spec_.requested.has_confidence_cap()) cap = spec_.requested.confidence_cap();
+      else spec_.options.set_confidence_cap(render::method_spec(k_auto_reuse).confidence_cap);
+      auto_choice_.reset();  // what an interrupted calibration measured
+      calibration_start_ = index;
+      redecide_locked();
+    }
+    render::RenderSettings reuse = settings_;
+    reuse.method = k_auto_reuse;
+    calibration_ = std::make_unique<AutoCalibration>(ctx_, *scene_, reuse, cap, index);
+  }
+  render::FrameResult r = calibration_->render(frame_state_, uint32_t(index));
+  if (!calibration_->done()) {
+    // After its first frame the calibration has chosen restir-gather's cap: the options and the
+    // decisions say it from then on.
+    const AutoChoice& so_far = calibration_->choice();
+    std::lock_guard lock(mu_);
+    if (!auto_choice_) {
+      auto_choice_ = so_far;
+      if (so_far.cap_chosen) spec_.options.set_confidence_cap(so_far.confidence_cap);
+      redecide_locked();
+    }
+    return r;
+  }
+
+  // The choice: its first run goes on as the session's renderer (restir-gather's history is kept).
+  const AutoChoice choice = calibration_->choice();
+  renderer_ = calibration_->take_chosen();
+  calibration_.reset();
+  std::lock_guard lock(mu_);
+  auto_choice_ = choice;
+  spec_.method = choice.method;
+  if (choice.method->reuse && choice.cap_chosen) spec_.options.set_confidence_cap(choice.confidence_cap);
+  settings_ = renderer_->settings();
+  settings_.restir = restir_options(spec_.options);
+  redecide_locked();
+  for (const auto& d : decisions_)
+    if (d.name() == "method") {
+      v1::Decision change = d;
+      change.set_reason(change.reason() + "; from frame " + std::to_string(index + 1) + " on, the GPU state of its first run "
+                        "goes on (" + (choice.method->reuse ? "its history is kept" : "pt keeps no history") + ")");
+      option_changes.push_back(std::move(change));
+    }
+  return r;
+}
+
+void Session::redecide_locked() {
+  decisions_ = decide(*spec_.method, spec_.requested_method, spec_.requested, spec_.options, spec_.encodings, analysis_,
+                      measured_layers(spec_.options, spec_.width, spec_.height));
+  if (spec_.auto_method) describe_auto(decisions_, spec_.requested_method, auto_choice_, calibration_start_, calibration_reason_);
+}
+
 const std::optional<render::LayerCount>& Session::measured_layers(const v1::RenderOptions& options, uint32_t width,
                                                                   uint32_t height) {
   if (!spec_.method->layers || options.layers() != 0) {
@@ -253,6 +348,11 @@ const std::optional<render::LayerCount>& Session::measured_layers(const v1::Rend
 const render::MethodSpec& Session::method() const {
   std::lock_guard lock(mu_);
   return *spec_.method;
+}
+
+const render::MethodSpec& Session::checked_method() const {
+  if (spec_.auto_method) return render::method_spec(k_auto_reuse);  // auto_method never changes
+  return method();
 }
 
 v1::Session Session::describe(const ServiceConfig& config) const {

@@ -18,7 +18,9 @@
 #include "scene/scene.h"
 #include "service/config.h"
 #include "service/frame_input.h"
+#include "service/auto_calibration.h"
 #include "service/metrics.h"
+#include "service/method_auto.h"
 #include "service/options.h"
 #include "service/session_spec.h"
 #include "strata/v1/render.pb.h"
@@ -66,9 +68,13 @@ class Session {
 
   const std::string& name() const { return name_; }
   const scene::Scene& scene() const { return *scene_; }
+  // The method in use (for `method auto`: restir-gather while it calibrates, then its choice).
   const render::MethodSpec& method() const;
-  // The client named no method: the session took render::k_default_method.
-  bool method_defaulted() const { return spec_.requested_method.empty(); }
+  // The client asked for `method auto` (by name or by naming no method).
+  bool auto_method() const { return spec_.auto_method; }
+  // The row a FrameInput's options are checked against: the method's; for auto restir-gather's,
+  // which it may choose again when it calibrates again.
+  const render::MethodSpec& checked_method() const;
   v1::Session describe(const ServiceConfig& config) const;
 
   // One stream at a time: false when another one is attached.
@@ -93,6 +99,12 @@ class Session {
  private:
   void create_renderer_locked();  // render_mu_ held
   void apply_locked(const PendingInput& input, std::string& reset_reason, std::vector<v1::Decision>& option_changes);
+  // `method auto` (render_mu_ held): drops the choice so that the next frame calibrates again.
+  void recalibrate_locked(const std::string& why);
+  // Renders frame `index` with the calibration (starting it when there is none) and, after its last
+  // frame, makes its choice the session's method; a `method` entry in `option_changes` says so.
+  render::FrameResult render_calibrating_locked(uint64_t index, std::vector<v1::Decision>& option_changes);
+  void redecide_locked();  // mu_ held: decisions_ from spec_ (and auto's state)
 
   const std::string name_;
   const std::shared_ptr<const scene::Scene> scene_;
@@ -112,11 +124,19 @@ class Session {
   scene::FrameState frame_state_;
   std::optional<scene::Camera> last_camera_;  // of the frame rendered last (where its shutter closed)
   render::RenderSettings settings_;
+  // `method auto`: the calibration in progress, if any (none once it has chosen).
+  std::unique_ptr<AutoCalibration> calibration_;
 
   // Description and counters: guarded by mu_ (taken after render_mu_ when both are needed).
   mutable std::mutex mu_;
   SessionSpec spec_;
   std::vector<v1::Decision> decisions_;
+  // `method auto`: what its calibration measured at the session's resolution (none before its first
+  // frame; its method is null until it has chosen), the frame the calibration starts or started at,
+  // and why it calibrates.
+  std::optional<AutoChoice> auto_choice_;
+  uint64_t calibration_start_ = 0;
+  std::string calibration_reason_ = "the session's first frames";
   std::map<std::string, uint64_t> memory_;
   std::vector<render::PassDecision> last_passes_;
   std::weak_ptr<AttachedStream> stream_;

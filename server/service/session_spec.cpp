@@ -10,10 +10,11 @@ SessionSpec check_create_session(const v1::CreateSessionRequest& req, const Serv
   SessionSpec spec;
   spec.method = &check_method(req.method(), "method");
   spec.requested_method = req.method();
+  spec.auto_method = is_auto_method(req.method());
   if (!req.has_resolution()) fail_invalid("resolution is required (width and height in pixels)");
   check_resolution(req.resolution(), limits, "resolution");
   check_options(req.options(), limits, "options");
-  check_method_options(*spec.method, req.options(), "options", req.method().empty());
+  check_method_options(*spec.method, req.options(), "options", spec.auto_method);
   spec.requested = req.options();
   spec.options = with_defaults(req.options(), *spec.method, limits, req.resolution().height());
   spec.width = req.resolution().width();

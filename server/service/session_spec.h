@@ -15,8 +15,10 @@ namespace strata::service {
 namespace v1 = ::strata::v1;
 
 struct SessionSpec {
+  // The method in use; for `method auto` restir-gather while it calibrates, then its choice.
   const render::MethodSpec* method = nullptr;
-  std::string requested_method;  // as the client sent it: empty takes the default method
+  std::string requested_method;  // as the client sent it: empty takes the default, auto
+  bool auto_method = false;      // empty or "auto" (service/method_auto.h)
   v1::RenderOptions requested;  // as the client sent them
   v1::RenderOptions options;    // effective: every field set
   uint32_t width = 0, height = 0, seed = 0;

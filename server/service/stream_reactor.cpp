@@ -133,7 +133,7 @@ void StreamReactor::handle_input() {
                            : "sequence = " + std::to_string(in.sequence()) + " is not greater than the previous sequence " +
                                  std::to_string(last));
   PendingInput input = parse_frame_input(in, s->scene(), core_.config.limits);
-  check_method_options(s->method(), input.options, "options", s->method_defaulted());
+  check_method_options(s->checked_method(), input.options, "options", s->auto_method());
   check_method_encodings(s->method(), input.encodings, "encodings");
   s->note_input(in.sequence());
   std::lock_guard lock(mu_);

@@ -85,7 +85,7 @@ TEST_F(BadCreateTest, EveryBadRequestGetsItsStatusAndMessage) {
       invalid, "exceeds max_pixels = 307200");
   add("unknown method", [](auto& r) { r.set_method("magic"); }, invalid, "method = 'magic' is not a method");
   add("method not implemented", [](auto& r) { r.set_method("restir-lod"); }, invalid,
-      "method = 'restir-lod' is not a method; methods: pt, restir-gather, restir-di, restir-splat, restir-splat-backup, restir-multilayer");
+      "method = 'restir-lod' is not a method; methods: auto, pt, restir-gather, restir-di, restir-splat, restir-splat-backup, restir-multilayer");
   add("spp 0", [](auto& r) { r.mutable_options()->set_spp(0); }, invalid, "options.spp = 0 is outside [1, 64] (limit max_spp)");
   add("spp over max_spp", [](auto& r) { r.mutable_options()->set_spp(65); }, invalid, "options.spp = 65 is outside [1, 64] (limit max_spp)");
   add("max_depth over the limit", [](auto& r) { r.mutable_options()->set_max_depth(33); }, invalid, "options.max_depth = 33");

@@ -134,7 +134,7 @@ TEST_F(LifecycleTest, ServerStatusReportsLimitsAndMethods) {
   EXPECT_EQ(st.limits().max_pixels(), config_.limits.max_pixels);
   EXPECT_EQ(st.limits().max_frame_bytes(), service::max_frame_bytes(config_.limits.max_pixels));
   const std::vector<std::string> methods(st.methods().begin(), st.methods().end());
-  EXPECT_EQ(methods, (std::vector<std::string>{"pt", "restir-gather", "restir-di", "restir-splat", "restir-splat-backup", "restir-multilayer"}));
+  EXPECT_EQ(methods, (std::vector<std::string>{"auto", "pt", "restir-gather", "restir-di", "restir-splat", "restir-splat-backup", "restir-multilayer"}));
   EXPECT_FALSE(st.draining());
   EXPECT_EQ(st.device(), service_context().device_name());
 }

@@ -184,8 +184,9 @@ TEST_F(RestirTest, OptionChangesRecreateTheGpuStateAndSayWhy) {
   EXPECT_EQ(kept.options().spp(), 1u) << "the refused input changed the session";
 }
 
-// A session that names no method gets the default, restir-gather (render::k_default_method), and
-// its decision says so; spp != 1 then names the default and pt.
+// A session that names no method gets the default, auto (service/method_auto.h), which calibrates
+// with restir-gather's options, and its decision says so; spp != 1 then names what auto may choose
+// and pt.
 TEST_F(RestirTest, SessionWithoutAMethodGetsTheDefaultAndSaysWhy) {
   const v1::Session s = create_ok(stub(), restir_request(""));
   EXPECT_EQ(s.method(), "restir-gather");
@@ -193,20 +194,21 @@ TEST_F(RestirTest, SessionWithoutAMethodGetsTheDefaultAndSaysWhy) {
   ASSERT_NE(method, nullptr);
   EXPECT_EQ(method->requested(), "");
   EXPECT_EQ(method->value(), "restir-gather");
-  EXPECT_NE(method->reason().find("the default: ReSTIR PT"), std::string::npos) << method->reason();
+  EXPECT_NE(method->reason().find("auto: calibrating"), std::string::npos) << method->reason();
   const auto frames = stream_frames(stub(), s.name(), 2);
   ASSERT_EQ(frames.size(), 2u);
   EXPECT_TRUE(frames[1].statistics().has_reuse());
 
   const v1::Session named = create_ok(stub(), restir_request("restir-gather"));
   EXPECT_EQ(decision(named, "method")->requested(), "restir-gather");
-  EXPECT_EQ(decision(named, "method")->reason().find("the default"), std::string::npos);
+  EXPECT_EQ(decision(named, "method")->reason().find("auto"), std::string::npos);
 
   auto spp = restir_request("");
   spp.mutable_options()->set_spp(4);
   v1::Session refused;
   expect_status(create_session(stub(), spp, &refused), StatusCode::INVALID_ARGUMENT,
-                "options.spp = 4 but method restir-gather (the default: no method was named)", "spp 4 without a method");
+                "options.spp = 4 but method auto (the default when no method is named) may choose restir-gather",
+                "spp 4 without a method");
   expect_status(create_session(stub(), spp, &refused), StatusCode::INVALID_ARGUMENT, "or method = \"pt\"",
                 "spp 4 without a method");
 
@@ -223,7 +225,8 @@ TEST_F(RestirTest, SessionWithoutAMethodGetsTheDefaultAndSaysWhy) {
   change.mutable_options()->set_spp(4);
   c.send(change);
   EXPECT_FALSE(c.read()) << "spp = 4 was rendered by the default method";
-  expect_status(c.finish(), StatusCode::INVALID_ARGUMENT, "(the default: no method was named)", "spp change without a method");
+  expect_status(c.finish(), StatusCode::INVALID_ARGUMENT, "method auto (the default when no method is named)",
+                "spp change without a method");
 }
 
 // The confidence cap where something moved is the method's unless asked for (render::MethodSpec::

@@ -94,6 +94,7 @@ Remote run_grpc(v1::RenderService::Stub& stub, const Args& a, const std::vector<
   req.mutable_scene()->set_builtin(a.scene);
   req.mutable_resolution()->set_width(a.width);
   req.mutable_resolution()->set_height(a.height);
+  req.set_method("pt");  // as the in-process renderer (RenderSettings' method), not the session default auto
   req.mutable_options()->set_spp(a.spp);
   req.set_seed(a.seed);
   for (auto e : encodings) req.add_encodings(e);
