@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The main job: starts `stratad serve` on 127.0.0.1 (a free port), waits until its health is
-# SERVING, streams carousel (objects and the camera move) with the default method, auto (the
+# SERVING, streams carousel-bounce (objects and the camera move; the light comes mostly off a lit
+# patch of wall, one bounce away) with the default method, auto (the
 # session measures pt and restir-gather on its first frames and keeps the one with the lower error at
 # equal time; docs/ARCHITECTURE.md, "Method auto") with `strata stream` into out/main
 # (frame_NNNN.exr, frame_NNNN.png, frames.json), then stops the server with SIGTERM (graceful drain). Exits non-zero
@@ -49,7 +50,7 @@ address=127.0.0.1:$(cat "$work/port")
 
 mkdir -p "$out"
 rm -f "$out"/frame_*.exr "$out"/frame_*.png "$out"/frames.json
-if ! "$strata" stream --server "$address" --scene carousel --width 256 --height 256 \
+if ! "$strata" stream --server "$address" --scene carousel-bounce --width 256 --height 256 \
     --frames 30 --seed 0 --out "$out"; then
   echo "run-main.sh: strata stream failed; stratad said:" >&2
   cat "$work/stratad.log" >&2
@@ -65,4 +66,4 @@ if [ "$status" -ne 0 ]; then
   echo "run-main.sh: stratad serve exited with status $status after SIGTERM" >&2
   exit 1
 fi
-echo "run-main.sh: 30 frames of carousel (restir-gather), EXR + PNG each, and frames.json in $out"
+echo "run-main.sh: 30 frames of carousel-bounce (method auto: see frames.json for the method it kept), EXR + PNG each, and frames.json in $out"
