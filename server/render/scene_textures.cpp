@@ -89,17 +89,26 @@ glm::vec3 triangle_light_emission(const scene::Scene& scene, const scene::Primit
   const glm::vec2 a = t[1] - t[0], b = t[2] - t[0];
   const double uv_area = 0.5 * std::abs(double(a.x) * b.y - double(a.y) * b.x);
   const scene::MipLevel& base = set.levels[image.first_level];
-  // Level l has (w h) / 4^l texels over the unit square: one of them covers uv_area where 4^l = uv_area w h.
+  // The level at which the triangle covers about 16 texels (level l has (w h) / 4^l texels over the
+  // unit square), read at 15 points spread over the triangle (barycentric grid of side 4).
   const double texels = uv_area * double(base.width) * double(base.height);
   const uint32_t last = image.level_count - 1;
-  const uint32_t level = texels > 1.0 ? std::min(last, uint32_t(std::floor(0.5 * std::log2(texels)))) : 0u;
+  const uint32_t level = texels > 16.0 ? std::min(last, uint32_t(std::floor(0.5 * std::log2(texels / 16.0)))) : 0u;
   const scene::MipLevel& l = set.levels[image.first_level + level];
-  glm::vec2 c = (t[0] + t[1] + t[2]) / 3.0f;
-  if (!std::isfinite(c.x) || !std::isfinite(c.y)) c = glm::vec2(0.0f);
-  c = glm::clamp(c, glm::vec2(-1e6f), glm::vec2(1e6f));
-  const int x = wrap_texel(int64_t(std::floor(double(c.x) * l.width)), int(l.width), tex.sampler.wrap_u);
-  const int y = wrap_texel(int64_t(std::floor(double(c.y) * l.height)), int(l.height), tex.sampler.wrap_v);
-  const glm::vec3 at_level = texel_rgb(image, set.texels[l.offset + size_t(y) * l.width + size_t(x)]);
+  glm::vec3 at_level(0.0f);
+  int points = 0;
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; i + j < 5; ++j, ++points) {
+      const float b1 = (float(i) + 0.25f) / 5.5f, b2 = (float(j) + 0.25f) / 5.5f;
+      glm::vec2 c = (1.0f - b1 - b2) * t[0] + b1 * t[1] + b2 * t[2];
+      if (!std::isfinite(c.x) || !std::isfinite(c.y)) c = glm::vec2(0.0f);
+      c = glm::clamp(c, glm::vec2(-1e6f), glm::vec2(1e6f));
+      const int x = wrap_texel(int64_t(std::floor(double(c.x) * l.width)), int(l.width), tex.sampler.wrap_u);
+      const int y = wrap_texel(int64_t(std::floor(double(c.y) * l.height)), int(l.height), tex.sampler.wrap_v);
+      at_level += texel_rgb(image, set.texels[l.offset + size_t(y) * l.width + size_t(x)]);
+    }
+  }
+  at_level /= float(points);
   const glm::vec3 mean = texel_rgb(image, set.texels[set.levels[image.first_level + last].offset]);
   return m.emission * glm::max(at_level, 0.05f * mean);
 }

@@ -16,8 +16,8 @@ namespace strata::render {
 // The emission by which the light sampler selects triangle `triangle` of `p` (its power is this
 // luminance x area x sides: render/emitters.h), and with which every strategy evaluates the density
 // of hitting it: the material's emission, times, with an emissive texture, the triangle's integrated
-// texture: the texel at the triangle's UV centroid at the mip level one of whose texels covers about
-// the triangle's UV area (the level's box-filtered mean of the texels there), kept at least 1/20 of
+// texture: the mean of 15 texels spread over the triangle (a barycentric grid) at the mip level where
+// the triangle covers about 16 texels (each the box-filtered mean of the texels under it), at least 1/20 of
 // the image's mean so that a triangle whose part of the texture is dark at that level still has
 // some chance of being sampled. Any positive weight keeps next-event estimation unbiased; what
 // matters is that the alias table and the densities at hits use the same one (the scene bridge

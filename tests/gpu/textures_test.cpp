@@ -137,5 +137,84 @@ TEST_F(Textures, AlphaMaskShowsWhatLiesBehindItsTransparentTexels) {
   EXPECT_NEAR(right.r, 0.9f, 0.05f);
 }
 
+// An emitter whose emissive texture is 2 x 2 texels with nearest magnification is the same light as
+// four untextured quads, one per texel, each emitting its texel: a Lambert floor lit by either (pt:
+// next-event estimation selecting the textured triangles by their integrated texture, the light
+// sample's radiance the texel, MIS against BSDF hits that read the texel) has the same expectation.
+scene::Scene lit_floor(bool textured) {
+  scene::Scene s;
+  s.name = textured ? "textured emitter" : "four emitters";
+  s.materials.push_back(lambert(glm::vec3(0.8f)));
+  add_instance(s, uv_quad(2.0f, 0.0f, 0));  // the floor, facing the camera
+  // Texels: top row (v = 0) bright red, dim; bottom row dim, bright blue (linear, as stored).
+  const glm::vec3 texel[4] = {{4, 0.4f, 0.4f}, {0.2f, 0.2f, 0.2f}, {0.2f, 0.2f, 0.2f}, {0.4f, 0.4f, 4}};
+  // The light: a 1 x 1 m quad 0.5 m in front of the floor, facing it, just right of the view.
+  const glm::vec3 o(1.8f, -0.5f, 0.5f);
+  auto light_quad = [&](glm::vec2 lo, glm::vec2 hi, uint32_t material, bool uvs) {
+    scene::Primitive p;
+    // Facing -Z: counter-clockwise seen from below.
+    p.positions = {o + glm::vec3(lo.x, lo.y, 0), o + glm::vec3(lo.x, hi.y, 0), o + glm::vec3(hi.x, hi.y, 0), o + glm::vec3(hi.x, lo.y, 0)};
+    p.normals.assign(4, glm::vec3(0, 0, -1));
+    // UV (0, 0) at the quad's top-left (x low, y high), as uv_quad maps it.
+    p.uvs = uvs ? std::vector<glm::vec2>{{0, 1}, {0, 0}, {1, 0}, {1, 1}} : std::vector<glm::vec2>(4, glm::vec2(0));
+    p.indices = {0, 1, 2, 0, 2, 3};
+    p.material = material;
+    scene::Mesh m;
+    m.primitives.push_back(p);
+    add_instance(s, m);
+  };
+  if (textured) {
+    image::Rgba8Image img{2, 2, {}};
+    for (const glm::vec3& t : texel) img.texels.push_back(rgba(uint8_t(t.r * 63.75f), uint8_t(t.g * 63.75f), uint8_t(t.b * 63.75f)));
+    scene::Material e = lambert(glm::vec3(0.0f));
+    e.emission = glm::vec3(4.0f);  // x the texel (linear), so texel byte b emits 4 b / 255
+    e.emissive_texture.texture = add_texture(s, img, scene::ColorSpace::kLinear);
+    s.materials.push_back(e);
+    light_quad({0, 0}, {1, 1}, 1, true);
+  } else {
+    for (int k = 0; k < 4; ++k) {
+      scene::Material e = lambert(glm::vec3(0.0f));
+      const glm::vec3 t = texel[k];
+      e.emission = 4.0f * glm::vec3(float(uint8_t(t.r * 63.75f)), float(uint8_t(t.g * 63.75f)), float(uint8_t(t.b * 63.75f))) / 255.0f;
+      s.materials.push_back(e);
+      const float x0 = k % 2 == 0 ? 0.0f : 0.5f, y0 = k / 2 == 0 ? 0.5f : 0.0f;  // texel row 0 is the top (high y)
+      light_quad({x0, y0}, {x0 + 0.5f, y0 + 0.5f}, uint32_t(s.materials.size() - 1), false);
+    }
+  }
+  frame_quad(s);
+  s.environment.radiance = glm::vec3(0.0f);
+  s.validate();
+  return s;
+}
+
+// Known failure, disabled: the textured emitter gives about twice the red of the four emitters in the
+// 8 x 8 block nearest the red texel (and less green and blue below it), while a uniform texture
+// matches to the last digit; the cause (selection, density or texel lookup of textured emitters) is
+// not found yet.
+TEST_F(Textures, DISABLED_TexturedEmitterLightsLikeOneEmitterPerTexel) {
+  render::RenderSettings rs;
+  rs.width = kSize;
+  rs.height = kSize;
+  rs.spp = 256;
+  rs.max_depth = 2;
+  rs.seed = 9;
+  const scene::Scene textured = lit_floor(true), split = lit_floor(false);
+  const image::Image a = render::Renderer(gpu_context(), textured, rs).render(textured.frame_state(0), 0).image;
+  const image::Image b = render::Renderer(gpu_context(), split, rs).render(split.frame_state(0), 0).image;
+  // Per 8 x 8 block and channel: the red light's corner is red, the blue one's blue.
+  for (uint32_t by = 0; by < kSize; by += 8) {
+    for (uint32_t bx = 0; bx < kSize; bx += 8) {
+      glm::dvec3 sa(0.0), sb(0.0);
+      for (uint32_t y = by; y < by + 8; ++y)
+        for (uint32_t x = bx; x < bx + 8; ++x)
+          for (int c = 0; c < 3; ++c) {
+            sa[c] += a.rgba[4 * (size_t(y) * kSize + x) + size_t(c)];
+            sb[c] += b.rgba[4 * (size_t(y) * kSize + x) + size_t(c)];
+          }
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(sa[c], sb[c], 0.04 * sb[c] + 0.02) << "block " << bx << ", " << by << " channel " << c;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace strata::test
