@@ -1,15 +1,10 @@
 // foliage: sub-pixel geometry. Four patches (one shared mesh, four instances) of 1,500 grass
 // blades each, 6-10 mm wide at the base (a pixel at 256 x 256 covers about 13 mm at 4 m) and
 // 15-40 cm tall, each blade three thin triangles bending away from the vertical; plus 1,200
-// small leaves (3 cm quads) lying on the ground. Blades and leaves are double-sided. Textures,
-// generated here: the leaves' quads are cut to a leaf's outline by an alpha-masked base colour
-// texture (alphaMode MASK: alpha-tested in every ray), with a darker midrib and veins; the soil
-// repeats a noise texture ten times across the ground.
+// small leaves (3 cm quads) lying on the ground. Blades and leaves are double-sided.
 // Light: a sun quad (4 m x 4 m at 400 m, radiance ~2.5e4) and a sky environment (0.3, 0.4, 0.55).
 // Animation: the camera slides 4 m sideways at 1.2 m height, looking slightly down.
-#include <algorithm>
 #include <cmath>
-#include <string>
 #include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -19,7 +14,6 @@
 #include "scene/builtin/random.h"
 #include "scene/builtin/shapes.h"
 #include "scene/normals.h"
-#include "scene/texture_mips.h"
 
 namespace strata::scene::builtin {
 namespace {
@@ -88,56 +82,6 @@ Primitive leaves(uint32_t material) {
   return p;
 }
 
-uint32_t rgba(float r, float g, float b, float a) {
-  auto byte = [](float x) { return static_cast<uint32_t>(std::lround(std::clamp(x, 0.0f, 1.0f) * 255.0f)); };
-  return byte(r) | byte(g) << 8 | byte(b) << 16 | byte(a) << 24;
-}
-
-// 32 x 32: a pointed leaf along v (opaque inside its outline, alpha 0 outside), brighter towards its
-// edges, with a darker midrib and side veins. The texture multiplies the material's base colour.
-image::Rgba8Image leaf_texture() {
-  constexpr uint32_t kSide = 32;
-  image::Rgba8Image img{kSide, kSide, {}};
-  for (uint32_t y = 0; y < kSide; ++y) {
-    for (uint32_t x = 0; x < kSide; ++x) {
-      const float u = (static_cast<float>(x) + 0.5f) / kSide * 2.0f - 1.0f;  // across the leaf
-      const float v = (static_cast<float>(y) + 0.5f) / kSide;               // along it, tip at v = 0
-      const float half_width = 0.95f * std::pow(std::sin(kPi * v), 0.8f);
-      const bool inside = std::abs(u) < half_width;
-      float shade = 0.75f + 0.25f * std::abs(u) / std::max(half_width, 1e-3f);
-      if (std::abs(u) < 0.07f) shade *= 0.6f;                                       // midrib
-      if (std::abs(std::fmod(v * 6.0f - std::abs(u) * 2.0f + 12.0f, 1.0f) - 0.5f) < 0.06f) shade *= 0.8f;  // veins
-      img.texels.push_back(rgba(shade, shade, shade, inside ? 1.0f : 0.0f));
-    }
-  }
-  return img;
-}
-
-// 64 x 64 value noise in two octaves (grey, about 1 on average): clods and pebbles of the soil.
-image::Rgba8Image soil_texture() {
-  constexpr uint32_t kSide = 64;
-  Pcg32 rng(0x5011u);
-  std::vector<float> coarse(8 * 8), fine(kSide * kSide);
-  for (float& c : coarse) c = rng.uniform(0.7f, 1.3f);
-  for (float& f : fine) f = rng.uniform(0.85f, 1.15f);
-  image::Rgba8Image img{kSide, kSide, {}};
-  for (uint32_t y = 0; y < kSide; ++y) {
-    for (uint32_t x = 0; x < kSide; ++x) {
-      const float c = coarse[(y / 8) * 8 + x / 8] * fine[y * kSide + x];
-      img.texels.push_back(rgba(0.75f * c, 0.75f * c, 0.75f * c, 1.0f));
-    }
-  }
-  return img;
-}
-
-// Adds `image` as a texture with the default sampler (trilinear, repeat); returns its index.
-int32_t add_texture(Scene& scene, const image::Rgba8Image& image, const std::string& name) {
-  Texture t;
-  t.image = add_texture_image(scene.textures, image, ColorSpace::kSrgb, name);
-  scene.textures.textures.push_back(t);
-  return static_cast<int32_t>(scene.textures.textures.size() - 1);
-}
-
 }  // namespace
 
 Scene make_foliage() {
@@ -147,14 +91,6 @@ Scene make_foliage() {
   b.scene().materials[grass].double_sided = true;
   const uint32_t leaf = b.material("leaf", {0.5f, 0.35f, 0.1f}, 0.0f, 0.7f);
   b.scene().materials[leaf].double_sided = true;
-  {
-    Scene& s = b.scene();
-    s.materials[leaf].base_color_texture.texture = add_texture(s, leaf_texture(), "leaf");
-    s.materials[leaf].alpha_mode = AlphaMode::kMask;
-    s.materials[leaf].alpha_cutoff = 0.5f;
-    s.materials[soil].base_color_texture.texture = add_texture(s, soil_texture(), "soil");
-    s.materials[soil].base_color_texture.transform.scale = glm::vec2(10.0f);
-  }
   const uint32_t sun = b.emitter("sun", {25000.0f, 24000.0f, 21000.0f});
 
   b.instance("ground", b.mesh("ground", {quad({-10, 0, 10}, {20, 0, 0}, {0, 0, -20}, soil)}));
