@@ -80,14 +80,15 @@ def write_scene(out, textured):
     blob = bytearray()
     views, accessors = [], []
 
-    def add(data, fmt, count, kind, comp, target, minmax=None):
+    def add(values, fmt, kind, comp, target, minmax=None):
+        """One accessor over `values` (flat components) in its own buffer view."""
         while len(blob) % 4:
             blob.append(0)
         off = len(blob)
-        blob.extend(struct.pack("<" + fmt * count, *data))
+        blob.extend(struct.pack("<" + fmt * len(values), *values))
         views.append({"buffer": 0, "byteOffset": off, "byteLength": len(blob) - off, "target": target})
-        acc = {"bufferView": len(views) - 1, "componentType": comp, "count": count // {"VEC3": 3, "VEC2": 2, "SCALAR": 1}[kind] * 1,
-               "type": kind}
+        acc = {"bufferView": len(views) - 1, "componentType": comp,
+               "count": len(values) // {"VEC3": 3, "VEC2": 2, "SCALAR": 1}[kind], "type": kind}
         if minmax:
             acc["min"], acc["max"] = minmax
         accessors.append(acc)
@@ -95,17 +96,12 @@ def write_scene(out, textured):
 
     meshes = []
     for name, m, material in (("floor", floor, 0), ("box_a", box_a, 1), ("box_b", box_b, 2), ("light", light, 3)):
-        flat_p = [c for p in m.positions for c in p]
         lo = [min(p[i] for p in m.positions) for i in range(3)]
         hi = [max(p[i] for p in m.positions) for i in range(3)]
-        pos = add(flat_p, "f", len(flat_p), "VEC3", 5126, 34962, (lo, hi))
-        accessors[pos]["count"] = len(m.positions)
-        nrm = add([c for n in m.normals for c in n], "f", 3 * len(m.normals), "VEC3", 5126, 34962)
-        accessors[nrm]["count"] = len(m.normals)
-        uv = add([c for t in m.uvs for c in t], "f", 2 * len(m.uvs), "VEC2", 5126, 34962)
-        accessors[uv]["count"] = len(m.uvs)
-        idx = add(m.indices, "I", len(m.indices), "SCALAR", 5125, 34963)
-        accessors[idx]["count"] = len(m.indices)
+        pos = add([c for p in m.positions for c in p], "f", "VEC3", 5126, 34962, (lo, hi))
+        nrm = add([c for n in m.normals for c in n], "f", "VEC3", 5126, 34962)
+        uv = add([c for t in m.uvs for c in t], "f", "VEC2", 5126, 34962)
+        idx = add(m.indices, "I", "SCALAR", 5125, 34963)
         meshes.append({"name": name, "primitives": [{"attributes": {"POSITION": pos, "NORMAL": nrm, "TEXCOORD_0": uv},
                                                      "indices": idx, "material": material}]})
 
