@@ -1,7 +1,8 @@
 // The scene bridge (docs/ARCHITECTURE.md, "The scene bridge"): the one place that reads the scene's
 // bindings and traces rays. Tracing in either frame, hit loading, the surface resolver, materials
 // (material_at), and, in include/scene_lights.glsl which this file includes, light sampling, light
-// densities and the environment. The passes and the ReSTIR library (shaders/restir) call these
+// densities and the environment; in the textured variant include/scene_bridge_textures.glsl holds
+// the texCoords, the alpha test of ray candidates and normal mapping. The passes and the ReSTIR library (shaders/restir) call these
 // functions; nothing else declares a scene binding or calls rayQuery*.
 #ifndef STRATA_SCENE_BRIDGE_GLSL
 #define STRATA_SCENE_BRIDGE_GLSL
@@ -29,68 +30,6 @@ layout(set = 0, binding = BINDING_FRAME, std140) uniform Frame { GpuFrameConstan
 
 GpuInstance instance_in(bool prev, uint i);
 
-#ifdef STRATA_TEXTURES
-// The textured variant of a pass (scenes with textures or alpha-tested materials): texture lookups
-// in material_at and load_hit, and with k_alpha_test the alpha test of every ray's candidates.
-#include "include/textures.glsl"
-
-// The texCoord sets of a triangle's vertices (xy set 0, zw set 1: TEXCOORD_1 where the scene has it).
-void triangle_texcoords(GpuPrimitive prim, uint flags, uint triangle, out vec4 t0, out vec4 t1, out vec4 t2) {
-  uint base = prim.index_offset + 3u * triangle;
-  uint i0 = prim.vertex_offset + b_indices[base];
-  uint i1 = prim.vertex_offset + b_indices[base + 1u];
-  uint i2 = prim.vertex_offset + b_indices[base + 2u];
-  t0 = vec4(b_vertices[i0].position_u.w, b_vertices[i0].normal_v.w, 0.0, 0.0);
-  t1 = vec4(b_vertices[i1].position_u.w, b_vertices[i1].normal_v.w, 0.0, 0.0);
-  t2 = vec4(b_vertices[i2].position_u.w, b_vertices[i2].normal_v.w, 0.0, 0.0);
-  if ((flags & MATERIAL_VERTEX_EXTRAS) != 0u) {
-    t0.zw = b_vertex_extras[i0].uv1.xy;
-    t1.zw = b_vertex_extras[i1].uv1.xy;
-    t2.zw = b_vertex_extras[i2].uv1.xy;
-  }
-}
-
-vec4 interpolate_texcoords(vec4 t0, vec4 t1, vec4 t2, vec2 bary) { return (1.0 - bary.x - bary.y) * t0 + bary.x * t1 + bary.y * t2; }
-
-// UV units per render-space unit of each set over the triangle: sqrt(UV area / area), the
-// triangle's Delta_0 of ray-cone texture LoD (Akenine-Moeller et al. 2019, Eq. 34) as a ratio.
-vec2 texcoord_density(vec4 t0, vec4 t1, vec4 t2, float area) {
-  vec4 a = t1 - t0;
-  vec4 b = t2 - t0;
-  vec2 uv_area = 0.5 * abs(vec2(a.x * b.y - a.y * b.x, a.z * b.w - a.w * b.z));
-  return area > 0.0 ? sqrt(uv_area / area) : vec2(0.0);
-}
-
-layout(constant_id = SPEC_ALPHA_TEST) const bool k_alpha_test = false;
-
-// Whether an alpha-tested candidate of a ray query is a surface (alpha_keeps at its texCoords).
-bool candidate_kept(bool prev, uint instance, uint geometry, uint triangle, vec2 bary) {
-  GpuPrimitive prim = b_primitives[instance_in(prev, instance).primitive_base + geometry];
-  GpuMaterialTextures m = b_material_textures[prim.material];
-  vec4 t0;
-  vec4 t1;
-  vec4 t2;
-  triangle_texcoords(prim, m.flags, triangle, t0, t1, t2);
-  return alpha_keeps(m, interpolate_texcoords(t0, t1, t2, bary));
-}
-
-// Alpha-tested primitives are non-opaque BLAS geometry (gpu/accel.h, BlasTriangles::opaque): with
-// k_alpha_test rays are not forced opaque, and every query confirms their candidates that pass the
-// test (the rest of the scene stays opaque and never reaches the loop). Without it, and in the
-// untextured variants, every ray is opaque and the loop is empty.
-#define SCENE_RAY_FLAGS (k_alpha_test ? 0u : gl_RayFlagsOpaqueEXT)
-#define CONFIRM_ALPHA_TESTED(rq, prev)                                                                    \
-  if (k_alpha_test && rayQueryGetIntersectionTypeEXT(rq, false) == gl_RayQueryCandidateIntersectionTriangleEXT && \
-      candidate_kept(prev, uint(rayQueryGetIntersectionInstanceCustomIndexEXT(rq, false)),                \
-                     uint(rayQueryGetIntersectionGeometryIndexEXT(rq, false)),                            \
-                     uint(rayQueryGetIntersectionPrimitiveIndexEXT(rq, false)),                           \
-                     rayQueryGetIntersectionBarycentricsEXT(rq, false)))                                  \
-    rayQueryConfirmIntersectionEXT(rq);
-#else
-#define SCENE_RAY_FLAGS gl_RayFlagsOpaqueEXT
-#define CONFIRM_ALPHA_TESTED(rq, prev)
-#endif
-
 // What a ray query reports: enough to reload the hit later (a path sample stores exactly this).
 struct RayHit {
   float t;
@@ -112,6 +51,13 @@ struct SurfaceHit {
   uint triangle_index;  // the triangle's first index / 3 (per-triangle tables: b_light_emission)
 #endif
 };
+
+#ifdef STRATA_TEXTURES
+#include "include/scene_bridge_textures.glsl"
+#else
+#define SCENE_RAY_FLAGS gl_RayFlagsOpaqueEXT
+#define CONFIRM_ALPHA_TESTED(rq, prev)
+#endif
 
 // The committed triangle hit of a finished query (false, and an empty hit, when it found none).
 bool committed_hit(rayQueryEXT rq, out RayHit hit) {
@@ -149,55 +95,6 @@ bool trace_visible(vec3 origin, vec3 dir, float t_max) {
   return rayQueryGetIntersectionTypeEXT(rq, true) == gl_RayQueryCommittedIntersectionNoneEXT;
 }
 
-#ifdef STRATA_TEXTURES
-// The shading normal of a normal-mapped surface: the texel (finest level, as every lookup that is
-// not a material's: the same normal for every path through the point) in the tangent frame. The
-// tangent is the TANGENT attribute where the file gives it (bitangent = cross(n, t) w, glTF), else
-// dP/du of the triangle in the normal texture's texCoord set, with the bitangent on the side of
-// -dP/dv (glTF's green channel points towards decreasing v). Falls back to the interpolated normal
-// where the frame degenerates.
-vec3 normal_mapped(GpuInstance inst, GpuPrimitive prim, GpuMaterialTextures mt, RayHit h, vec3 p0, vec3 p1, vec3 p2, vec4 t0,
-                   vec4 t1, vec4 t2, SurfaceHit s) {
-  vec3 n = s.shading_normal;
-  vec3 t = vec3(0.0);
-  float sign = 1.0;
-  bool have = false;
-  if ((mt.flags & MATERIAL_VERTEX_EXTRAS) != 0u) {
-    uint base = prim.index_offset + 3u * h.triangle;
-    vec4 a0 = b_vertex_extras[prim.vertex_offset + b_indices[base]].tangent;
-    vec4 a1 = b_vertex_extras[prim.vertex_offset + b_indices[base + 1u]].tangent;
-    vec4 a2 = b_vertex_extras[prim.vertex_offset + b_indices[base + 2u]].tangent;
-    if (a0.w != 0.0) {
-      vec3 t_obj = (1.0 - h.bary.x - h.bary.y) * a0.xyz + h.bary.x * a1.xyz + h.bary.y * a2.xyz;
-      t = mat3(inst.object_to_render) * t_obj;
-      // A mirroring transform turns cross(n, t) the other way round.
-      sign = (a0.w < 0.0 ? -1.0 : 1.0) * ((inst.flags & INSTANCE_FLAG_MIRRORED) != 0u ? -1.0 : 1.0);
-      have = true;
-    }
-  }
-  if (!have) {
-    vec2 d1 = mt.normal.tex_coord == 1u ? (t1 - t0).zw : (t1 - t0).xy;
-    vec2 d2 = mt.normal.tex_coord == 1u ? (t2 - t0).zw : (t2 - t0).xy;
-    float det = d1.x * d2.y - d1.y * d2.x;
-    if (!(abs(det) > 1e-12)) return n;
-    vec3 e1 = p1 - p0;
-    vec3 e2 = p2 - p0;
-    t = (e1 * d2.y - e2 * d1.y) / det;        // dP/du
-    vec3 dv = (e2 * d1.x - e1 * d2.x) / det;  // dP/dv
-    sign = dot(cross(n, t), -dv) < 0.0 ? -1.0 : 1.0;
-  }
-  t -= n * dot(n, t);
-  float tl = length(t);
-  if (!(tl > 0.0) || isinf(tl)) return n;
-  t /= tl;
-  vec3 b = cross(n, t) * sign;
-  vec3 m = sample_texture_ref(mt.normal, s.uv, s.uv_density, 0.0).xyz * 2.0 - 1.0;
-  m.xy *= mt.normal_scale;
-  vec3 mapped = m.x * t + m.y * b + m.z * n;
-  float ml = length(mapped);
-  return ml > 0.0 && !isinf(ml) ? mapped / ml : n;
-}
-#endif
 
 SurfaceHit load_hit_with(GpuInstance inst, RayHit h) {
   GpuPrimitive prim = b_primitives[inst.primitive_base + h.geometry];
