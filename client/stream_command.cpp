@@ -8,6 +8,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -36,6 +37,9 @@ struct StreamArgs {
   std::string scene = "cornell";
   std::string scene_file;  // a local .glb sent inline
   std::string scene_path;  // a file in the server's scene directory
+  std::string environment_file;  // a local .hdr/.exr sent inline
+  std::string environment_path;  // a .hdr/.exr in the server's scene directory
+  std::optional<float> environment_intensity, environment_rotation;
   std::string method;  // empty: the server's default, auto (pt or restir-gather, measured on the scene)
   uint32_t width = 256, height = 256, frames = 30, spp = 1, seed = 0, in_flight = 1;
   uint32_t max_depth = 0;  // 0: the server's default
@@ -64,6 +68,21 @@ v1::CreateSessionRequest make_request(const StreamArgs& a) {
     req.mutable_scene()->set_path(a.scene_path);
   } else {
     req.mutable_scene()->set_builtin(a.scene);
+  }
+  if (!a.environment_file.empty() && !a.environment_path.empty())
+    throw std::runtime_error("give at most one of --environment-file and --environment-path");
+  if (!a.environment_file.empty() || !a.environment_path.empty()) {
+    v1::EnvironmentSource& env = *req.mutable_scene()->mutable_environment();
+    if (!a.environment_file.empty()) {
+      std::ifstream in(a.environment_file, std::ios::binary);
+      if (!in) throw std::runtime_error("cannot read --environment-file " + a.environment_file);
+      env.set_image(std::string(std::istreambuf_iterator<char>(in), {}));
+      env.set_label(fs::path(a.environment_file).filename().string());
+    } else {
+      env.set_path(a.environment_path);
+    }
+    if (a.environment_intensity) env.set_intensity(*a.environment_intensity);
+    if (a.environment_rotation) env.set_rotation_degrees(*a.environment_rotation);
   }
   req.mutable_resolution()->set_width(a.width);
   req.mutable_resolution()->set_height(a.height);
@@ -231,6 +250,11 @@ Runner add_stream_command(CLI::App& app) {
   cmd->add_option("--scene", a->scene, "built-in scene name")->capture_default_str();
   cmd->add_option("--scene-file", a->scene_file, "a local .glb file, sent inline");
   cmd->add_option("--scene-path", a->scene_path, "a .gltf/.glb file in the server's --scene-dir");
+  cmd->add_option("--environment-file", a->environment_file, "a local equirectangular .hdr/.exr environment map, sent inline");
+  cmd->add_option("--environment-path", a->environment_path, "an equirectangular .hdr/.exr environment map in the server's --scene-dir");
+  cmd->add_option("--environment-intensity", a->environment_intensity, "scales the environment map's radiance (default 1)");
+  cmd->add_option("--environment-rotation", a->environment_rotation,
+                  "turns the environment map about +Y, degrees counter-clockwise seen from above (default 0)");
   cmd->add_option("--method", a->method,
                   "rendering method: one of the server's (ServerStatus.methods; stratad render --help describes each); "
                   "default: the server's default, auto: it measures pt and restir-gather on the scene's first frames and keeps "

@@ -109,6 +109,9 @@ Runner add_serve_command(CLI::App& app) {
   cmd->add_option("--drain-timeout", a->drain_timeout_s, "seconds that SIGTERM waits for frames in flight")->capture_default_str();
   cmd->add_option("--encode-threads", c.encode_threads, "threads encoding frames")->capture_default_str();
   cmd->add_option("--max-reference-spp", l.max_reference_spp, "RenderReference: target samples per pixel")->capture_default_str();
+  cmd->add_option("--max-environment-bytes", l.max_environment_bytes, "an environment map file (SceneSource.environment)")->capture_default_str();
+  cmd->add_option("--max-environment-dimension", l.max_environment_dimension, "an environment map's width and height each, in texels")
+      ->capture_default_str();
   cmd->add_option("--reference-cache", c.reference_cache,
                   "directory of cached references (default: $XDG_CACHE_HOME/strata/references, else ~/.cache/strata/references)");
   cmd->add_option("--device", a->device, "Vulkan device name substring (default: $STRATA_DEVICE, else lavapipe)");

@@ -7,13 +7,20 @@
 namespace strata::render {
 namespace {
 
-// The probability that NEE picks the environment: all of them when it is sampled at all
-// (environment_nee: only in scenes without emitters, so in every frame), none otherwise.
-float env_select_prob(bool env_nee) { return env_nee ? 1.0f : 0.0f; }
+// The probability that NEE picks the environment, given the light table's total power of the frame:
+// none when it is not sampled; for a map its power's share (SceneEnvironment::power); for the
+// constant environment, sampled only in scenes without emitters, all of them.
+float env_select_prob(bool env_nee, const GpuScene& scene, double total_power) {
+  if (!env_nee) return 0.0f;
+  if (!scene.has_environment_map()) return 1.0f;
+  const double env = scene.environment_power();
+  return total_power > 0.0 ? float(env / (env + total_power)) : 1.0f;
+}
 
 }  // namespace
 
 bool environment_nee(const scene::Environment& env, bool scene_has_emitters) {
+  if (SceneEnvironment::needed(env)) return true;
   return !scene_has_emitters && glm::any(glm::greaterThan(env.radiance, glm::vec3(0.0f)));
 }
 
@@ -55,7 +62,7 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   gpu::GpuFrameConstants c{};
   c.camera = make_camera(frame.camera, setup.width, setup.height);
   c.shutter = make_shutter(frame);
-  c.environment = glm::vec4(env.radiance, setup.env_nee ? 1.0f : 0.0f);
+  c.environment = glm::vec4(scene.has_environment_map() ? glm::vec3(0.0f) : env.radiance, setup.env_nee ? 1.0f : 0.0f);
   c.width = setup.width;
   c.height = setup.height;
   c.frame_index = setup.frame_index;
@@ -66,12 +73,13 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   c.time_partitions = time_partitions(frame, setup.splats_per_frame);
   c.emitter_count = scene.emitter_count();
   c.total_emitter_power = float(scene.total_emitter_power());
-  c.env_select_prob = env_select_prob(setup.env_nee);
+  c.env_select_prob = env_select_prob(setup.env_nee, scene, scene.total_emitter_power());
   c.light_count = scene.light_count();
   const auto address = [](VkDeviceAddress a) { return glm::uvec2(uint32_t(a), uint32_t(a >> 32)); };
   c.lights = address(scene.lights_address(scene.parity()));
   // With history the other slot holds the previous frame's records; without, this frame's stand in.
   c.prev_lights = address(scene.lights_address(scene.keeps_history() ? 1 - scene.parity() : scene.parity()));
+  c.environment_map = address(scene.environment_map_address());
 
   // The previous frame (docs/ARCHITECTURE.md, State, session state): the one the scene's previous slot
   // holds, at the same resolution (a session's image size is fixed). After the first update that
@@ -80,13 +88,13 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   c.prev_camera = make_camera(prev.camera, setup.width, setup.height);
   c.prev_shutter = make_shutter(prev);
   c.prev_total_emitter_power = float(scene.prev_total_emitter_power());
-  c.prev_env_select_prob = env_select_prob(setup.env_nee);
+  c.prev_env_select_prob = env_select_prob(setup.env_nee, scene, scene.prev_total_emitter_power());
   c.prev_width = setup.width;
   c.prev_height = setup.height;
   if (scene.history_valid()) {
     c.history_flags = gpu::HISTORY_VALID;
     if (scene.moved_since_previous()) c.history_flags |= gpu::HISTORY_SCENE_MOVED;
-    if (scene.lights_reselected()) c.history_flags |= gpu::HISTORY_LIGHTS_RESELECTED;
+    if (scene.lights_reselected() || c.env_select_prob != c.prev_env_select_prob) c.history_flags |= gpu::HISTORY_LIGHTS_RESELECTED;
     if (scene.lights_moved()) c.history_flags |= gpu::HISTORY_LIGHTS_MOVED;
     if (frame.camera == prev.camera && frame.camera_open == prev.camera_open) c.history_flags |= gpu::HISTORY_CAMERA_STILL;
   }

@@ -19,13 +19,14 @@ struct FrameSetup {
   bool fixed_primary = false;     // PRIMARY_DOMAIN: the primary stage traces each pixel's camera sample
 };
 
-// Whether next-event estimation samples the constant environment (docs/ARCHITECTURE.md, Light
-// sampling): only where the scene has no emitters. The environment is constant, so the BSDF
-// sample every path vertex traces anyway is the better strategy for it (cosine- or lobe-shaped
+// Whether next-event estimation samples the environment (docs/ARCHITECTURE.md, Light sampling):
+// always for an environment map (render/scene_environment.h), with its power's share of the light
+// sampler; the constant environment only where the scene has no emitters. A constant environment
+// is better found by the BSDF sample every path vertex traces anyway (cosine- or lobe-shaped
 // against NEE's uniform sphere, MIS-weighted by the same rules); an NEE sample spent on it is one
-// not spent on the emitters, and the even split of earlier versions raised pt's RelMSE
-// 2-5x on chess, foliage and carousel (docs/BENCHMARKS.md, Light selection). Escaped BSDF rays
-// then carry the environment with MIS weight 1. A scene property: the same every frame.
+// not spent on the emitters, and the even split of earlier versions raised pt's RelMSE 2-5x on
+// chess, foliage and carousel (docs/BENCHMARKS.md, Light selection). Escaped BSDF rays then carry
+// the constant environment with MIS weight 1. A scene property: the same every frame.
 bool environment_nee(const scene::Environment& env, bool scene_has_emitters);
 
 // K time partitions of a frame (RS-main Eq. 19): splats_per_frame when the shutter is open (the

@@ -86,9 +86,31 @@ std::string to_hex(const std::array<uint8_t, 32>& digest) {
   return s;
 }
 
+namespace {
+
+void hash_texture_ref(Sha256& h, const scene::TextureRef& r) {
+  h.pod(r.texture);
+  h.pod(r.tex_coord);
+  h.pod(r.transform.offset);
+  h.pod(r.transform.rotation);
+  h.pod(r.transform.scale);
+}
+
+void hash_keys(Sha256& h, const std::vector<scene::TransformKey>& keys) {
+  h.pod(uint64_t(keys.size()));
+  for (const auto& k : keys) {
+    h.pod(k.time);
+    h.pod(k.translation);
+    h.pod(k.rotation);
+    h.pod(k.scale);
+  }
+}
+
+}  // namespace
+
 std::string scene_content_hash(const scene::Scene& s) {
   Sha256 h;
-  h.text("strata scene content v1");
+  h.text("strata scene content v2");
   h.pod(uint64_t(s.materials.size()));
   for (const auto& m : s.materials) {
     h.pod(m.base_color);
@@ -97,7 +119,38 @@ std::string scene_content_hash(const scene::Scene& s) {
     h.pod(m.emission);
     h.pod(m.specular);
     h.pod(uint8_t(m.double_sided));
+    h.pod(m.alpha);
+    h.pod(uint8_t(m.alpha_mode));
+    h.pod(m.alpha_cutoff);
+    hash_texture_ref(h, m.base_color_texture);
+    hash_texture_ref(h, m.metallic_roughness_texture);
+    hash_texture_ref(h, m.normal_texture);
+    h.pod(m.normal_scale);
+    hash_texture_ref(h, m.emissive_texture);
   }
+  const scene::TextureSet& t = s.textures;
+  h.pod(uint64_t(t.images.size()));
+  for (const auto& i : t.images) {
+    h.pod(uint8_t(i.color_space));
+    h.pod(i.first_level);
+    h.pod(i.level_count);
+  }
+  h.pod(uint64_t(t.levels.size()));
+  for (const auto& l : t.levels) {
+    h.pod(l.width);
+    h.pod(l.height);
+    h.pod(l.offset);
+  }
+  h.pod(uint64_t(t.textures.size()));
+  for (const auto& x : t.textures) {
+    h.pod(x.image);
+    h.pod(uint8_t(x.sampler.mag_filter));
+    h.pod(uint8_t(x.sampler.min_filter));
+    h.pod(uint8_t(x.sampler.mip_filter));
+    h.pod(uint8_t(x.sampler.wrap_u));
+    h.pod(uint8_t(x.sampler.wrap_v));
+  }
+  h.array(t.texels);
   h.pod(uint64_t(s.meshes.size()));
   for (const auto& mesh : s.meshes) {
     h.pod(uint64_t(mesh.primitives.size()));
@@ -105,6 +158,8 @@ std::string scene_content_hash(const scene::Scene& s) {
       h.array(p.positions);
       h.array(p.normals);
       h.array(p.uvs);
+      h.array(p.uvs1);
+      h.array(p.tangents);
       h.array(p.indices);
       h.pod(p.material);
     }
@@ -116,7 +171,26 @@ std::string scene_content_hash(const scene::Scene& s) {
     h.pod(i.lod);
   }
   hash_camera(h, s.camera);
+  h.pod(uint64_t(s.lights.size()));
+  for (const auto& l : s.lights) {
+    h.pod(uint8_t(l.type));
+    h.pod(l.color);
+    h.pod(l.intensity);
+    h.pod(l.range);
+    h.pod(l.inner_cone);
+    h.pod(l.outer_cone);
+    h.pod(l.transform);
+  }
   h.pod(s.environment.radiance);
+  h.pod(uint8_t(s.environment.map.has_value()));
+  if (s.environment.map) {
+    const scene::EnvironmentMap& e = *s.environment.map;
+    h.pod(e.width);
+    h.pod(e.height);
+    h.array(e.radiance);
+    h.pod(e.intensity);
+    h.pod(e.rotation);
+  }
   const auto& a = s.animation;
   h.pod(a.frames_per_second);
   h.pod(uint64_t(a.camera.size()));
@@ -126,15 +200,14 @@ std::string scene_content_hash(const scene::Scene& s) {
     h.pod(k.orientation);
   }
   h.pod(uint64_t(a.tracks.size()));
-  for (const auto& t : a.tracks) {
-    h.pod(t.instance);
-    h.pod(uint64_t(t.keys.size()));
-    for (const auto& k : t.keys) {
-      h.pod(k.time);
-      h.pod(k.translation);
-      h.pod(k.rotation);
-      h.pod(k.scale);
-    }
+  for (const auto& tr : a.tracks) {
+    h.pod(tr.instance);
+    hash_keys(h, tr.keys);
+  }
+  h.pod(uint64_t(a.light_tracks.size()));
+  for (const auto& tr : a.light_tracks) {
+    h.pod(tr.light);
+    hash_keys(h, tr.keys);
   }
   h.pod(uint64_t(a.lod_schedule.size()));
   for (const auto& k : a.lod_schedule) {
@@ -158,6 +231,7 @@ std::string reference_cache_key(const ReferenceKey& k) {
   if (k.frame.camera_open) hash_camera(h, *k.frame.camera_open);
   h.array(k.frame.transforms);
   h.array(k.frame.lods);
+  h.array(k.frame.lights);
   h.pod(k.width);
   h.pod(k.height);
   h.pod(k.max_depth);

@@ -69,6 +69,7 @@ std::map<std::string, uint64_t> Renderer::memory_bytes() const {
   if (mem.history > 0) m["scene_history"] = mem.history;
   if (mem.lod_uv > 0) m["lod_uv_space"] = mem.lod_uv;
   if (mem.textures > 0) m["textures"] = mem.textures;
+  if (mem.environment > 0) m["environment"] = mem.environment;
   for (const auto& [group, bytes] : method_->memory_bytes()) m[group] += bytes;
   return m;
 }

@@ -30,7 +30,11 @@ GpuScene::GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep
       slot.lights = gpu::Buffer(ctx, sizeof(gpu::GpuPunctualLight) * scene.lights.size(), gpu::k_storage_usage,
                                 gpu::Memory::Host, "punctual lights");
   }
-  if (has_punctual()) scene_radius_ = scene_bounding_radius(scene);
+  if (has_punctual() || SceneEnvironment::needed(scene.environment)) scene_radius_ = scene_bounding_radius(scene);
+  if (SceneEnvironment::needed(scene.environment)) {
+    environment_ = std::make_unique<SceneEnvironment>(ctx, *scene.environment.map);
+    environment_power_ = SceneEnvironment::power(*scene.environment.map, scene_radius_);
+  }
   if (keep_history) {
     swept_ = gpu::Buffer(ctx, sizeof(gpu::GpuSweptBoxes), gpu::k_storage_usage, gpu::Memory::Host, "swept boxes");
     if (LodUvSpace::needed(scene)) {
@@ -329,6 +333,7 @@ SceneMemory GpuScene::memory() const {
   if (keeps_history()) m.history += swept_.size() + lod_off_table_.size();
   if (lod_uv_) m.lod_uv = lod_uv_->bytes();
   if (textures_) m.textures = textures_->bytes();
+  if (environment_) m.environment = environment_->bytes();
   return m;
 }
 

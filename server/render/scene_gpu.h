@@ -19,6 +19,7 @@
 #include "include/scene_data.h"
 #include "render/emitters.h"
 #include "render/lod_uv_space.h"
+#include "render/scene_environment.h"
 #include "render/scene_textures.h"
 #include "scene/scene.h"
 
@@ -31,6 +32,7 @@ struct SceneMemory {
   VkDeviceSize history = 0;        // the previous frame's slot: second TLAS, its scratch, instances
   VkDeviceSize lod_uv = 0;         // LoD-aware reuse: UV BLASes, UV TLAS, LoD table (scenes with LoD groups, with history)
   VkDeviceSize textures = 0;       // texels, texture and level tables, material texture records, vertex extras (textured scenes)
+  VkDeviceSize environment = 0;    // the environment map's radiance and sampling tables (scenes with a map)
 };
 
 class GpuScene {
@@ -59,7 +61,14 @@ class GpuScene {
   std::string shader(const char* name) const { return textured() ? std::string(name) + "_textured" : std::string(name); }
   void add_spec(std::vector<gpu::SpecConstant>& spec) const {
     if (alpha_tested()) spec.push_back({SPEC_ALPHA_TEST, VK_TRUE});
+    if (has_environment_map()) spec.push_back({SPEC_ENV_MAP, VK_TRUE});
   }
+  // The scene's environment is a map (render/scene_environment.h): every pass compiles it in
+  // (SPEC_ENV_MAP) and reads it by the device address in the frame constants.
+  bool has_environment_map() const { return environment_ != nullptr; }
+  VkDeviceAddress environment_map_address() const { return environment_ ? environment_->address() : 0; }
+  // The map's weight against the light table (SceneEnvironment::power); 0 without a map.
+  double environment_power() const { return environment_power_; }
   // The scene has KHR_lights_punctual lights: passes that sample lights compile them in
   // (SPEC_PUNCTUAL) and read their records by the device addresses in the frame constants
   // (lights(slot)); a scene without binds and compiles none of it.
@@ -152,6 +161,8 @@ class GpuScene {
   gpu::Buffer swept_;                           // GpuSweptBoxes (with history)
   std::unique_ptr<LodUvSpace> lod_uv_;          // with history, for scenes with LoD groups
   std::unique_ptr<SceneTextures> textures_;     // scenes with textures or alpha-tested materials
+  std::unique_ptr<SceneEnvironment> environment_;  // scenes with an environment map
+  double environment_power_ = 0.0;
   gpu::Buffer lod_off_table_;                   // with history, without LoD groups: a header that says "off"
   bool lod_mapping_on_ = false;
   std::vector<Slot> slots_;                     // 1, or 2 with history
@@ -162,7 +173,7 @@ class GpuScene {
   std::vector<uint32_t> changes_;               // per instance, INSTANCE_CHANGED_* of the last frame
   std::vector<bool> instance_emits_;            // per instance: some level has emissive triangles
   bool has_emitters_ = false;
-  double scene_radius_ = 1.0;                   // scene_bounding_radius (directional lights' power)
+  double scene_radius_ = 1.0;                   // scene_bounding_radius (directional lights' and the environment map's power)
   bool lights_moved_ = false;
   uint32_t emitter_count_ = 0;
   uint32_t emitter_capacity_ = 0;

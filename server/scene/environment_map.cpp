@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "image/image.h"
+#include "include/environment_data.h"
 #include "image/texture_decode.h"
 
 namespace strata::scene {
@@ -30,18 +31,13 @@ size_t find_interval(const float* cdf, size_t n, float x) {
   return k;
 }
 
-glm::vec3 rotate_y(const glm::vec3& d, float angle) {
-  const float c = std::cos(angle), s = std::sin(angle);
-  return {c * d.x + s * d.z, d.y, -s * d.x + c * d.z};
-}
-
-// Density in UV of texel (i, j): the probability of its row times that of its column in the row,
-// over the texel's area 1 / (width height).
-double texel_uv_pdf(const EnvironmentMap& map, size_t i, size_t j) {
+// Probability of texel (i, j): that of its row times that of its column in the row (the same
+// differences of the same float tables as the device takes).
+double texel_probability(const EnvironmentMap& map, size_t i, size_t j) {
   const float* row = &map.conditional_cdf[j * (map.width + 1)];
-  const double p_row = double(map.marginal_cdf[j + 1]) - map.marginal_cdf[j];
-  const double p_col = double(row[i + 1]) - row[i];
-  return p_row * p_col * double(map.width) * map.height;
+  const float p_row = map.marginal_cdf[j + 1] - map.marginal_cdf[j];
+  const float p_col = row[i + 1] - row[i];
+  return double(p_row) * double(p_col);
 }
 
 }  // namespace
@@ -75,27 +71,18 @@ void build_environment_tables(EnvironmentMap& map) {
 }
 
 glm::vec3 environment_direction(const EnvironmentMap& map, glm::vec2 uv) {
-  const double phi = 2.0 * kPi * (double(uv.x) - 0.5), theta = kPi * double(uv.y);
-  const glm::vec3 d(float(std::sin(theta) * std::sin(phi)), float(std::cos(theta)),
-                    float(-std::sin(theta) * std::cos(phi)));
-  return rotate_y(d, map.rotation);
+  return gpu::environment_map_direction(uv, std::cos(map.rotation), std::sin(map.rotation));
 }
 
 glm::vec2 environment_uv(const EnvironmentMap& map, glm::vec3 direction) {
-  const glm::vec3 d = rotate_y(glm::normalize(direction), -map.rotation);
-  const double u = 0.5 + std::atan2(double(d.x), double(-d.z)) / (2.0 * kPi);
-  const double v = std::acos(std::clamp(double(d.y), -1.0, 1.0)) / kPi;
-  return {float(u), float(v)};
+  return gpu::environment_map_uv(glm::normalize(direction), std::cos(map.rotation), std::sin(map.rotation));
 }
 
 float environment_pdf(const EnvironmentMap& map, glm::vec3 direction) {
   if (!(map.weight_sum > 0.0)) return 0.0f;
   const glm::vec2 uv = environment_uv(map, direction);
-  const size_t i = std::min<size_t>(size_t(std::max(0.0f, uv.x) * float(map.width)), map.width - 1);
-  const size_t j = std::min<size_t>(size_t(std::max(0.0f, uv.y) * float(map.height)), map.height - 1);
-  const double sin_theta = std::sin(kPi * double(uv.y));
-  if (!(sin_theta > 0.0)) return 0.0f;
-  return float(texel_uv_pdf(map, i, j) / (2.0 * kPi * kPi * sin_theta));
+  const glm::uvec2 t = gpu::environment_map_texel(uv, map.width, map.height);
+  return gpu::environment_map_solid_angle_pdf(float(texel_probability(map, t.x, t.y)), map.width, map.height, uv.y);
 }
 
 EnvironmentSample sample_environment(const EnvironmentMap& map, glm::vec2 u) {
@@ -107,18 +94,15 @@ EnvironmentSample sample_environment(const EnvironmentMap& map, glm::vec2 u) {
   const float du = (u.x - row[i]) / (row[i + 1] - row[i]);
   const glm::vec2 uv((float(i) + std::clamp(du, 0.0f, 1.0f)) / float(map.width),
                      (float(j) + std::clamp(dv, 0.0f, 1.0f)) / float(map.height));
-  const double sin_theta = std::sin(kPi * double(uv.y));
   EnvironmentSample out;
   out.direction = environment_direction(map, uv);
-  out.pdf = sin_theta > 0.0 ? float(texel_uv_pdf(map, i, j) / (2.0 * kPi * kPi * sin_theta)) : 0.0f;
+  out.pdf = gpu::environment_map_solid_angle_pdf(float(texel_probability(map, i, j)), map.width, map.height, uv.y);
   return out;
 }
 
 glm::vec3 environment_radiance(const EnvironmentMap& map, glm::vec3 direction) {
-  const glm::vec2 uv = environment_uv(map, direction);
-  const size_t i = std::min<size_t>(size_t(std::max(0.0f, uv.x) * float(map.width)), map.width - 1);
-  const size_t j = std::min<size_t>(size_t(std::max(0.0f, uv.y) * float(map.height)), map.height - 1);
-  return map.radiance[j * map.width + i] * map.intensity;
+  const glm::uvec2 t = gpu::environment_map_texel(environment_uv(map, direction), map.width, map.height);
+  return map.radiance[size_t(t.y) * map.width + t.x] * map.intensity;
 }
 
 EnvironmentMap decode_environment_map(std::span<const uint8_t> bytes, const std::string& label,

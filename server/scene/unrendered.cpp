@@ -19,10 +19,6 @@ std::vector<std::string> unrendered_features(const Scene& scene) {
   if (emissive_textured > 0)
     out.push_back("emissiveTexture on " + gltf::count_of(emissive_textured, "material") +
                   " (drawn; the light it casts by next-event estimation is not yet verified against one emitter per texel)");
-  if (scene.environment.map) {
-    out.push_back("environment map '" + scene.environment.map->name +
-                  "' (loaded, not yet rendered: escaping rays see the constant environment colour)");
-  }
   return out;
 }
 

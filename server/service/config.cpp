@@ -26,6 +26,8 @@ void ServiceConfig::validate() const {
   require_in("max_spp", limits.max_spp, 1, RenderLimits::max_spp);
   require_in("max_depth", limits.max_depth, 1, RenderLimits::max_depth);
   require_in("max_reference_spp", limits.max_reference_spp, 1, RenderLimits::max_spp);
+  require_in("max_environment_bytes", limits.max_environment_bytes, 1024, 1ull << 30);
+  require_in("max_environment_dimension", limits.max_environment_dimension, 1, 16384);
   require_in("idle_timeout_ms", uint64_t(idle_timeout.count()), 10, uint64_t(24) * 3600 * 1000);
   require_in("drain_timeout_ms", uint64_t(drain_timeout.count()), 0, uint64_t(3600) * 1000);
   require_in("encode_threads", encode_threads, 1, 64);

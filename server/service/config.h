@@ -18,6 +18,8 @@ struct ServiceLimits {
   uint32_t max_spp = 1024;
   uint32_t max_depth = 64;
   uint32_t max_reference_spp = 65536;     // RenderReference: target samples per pixel
+  uint64_t max_environment_bytes = 64ull << 20;  // an environment file, inline or in the scene directory
+  uint32_t max_environment_dimension = 4096;     // its width and height each (16 B of device memory a texel)
 };
 
 // Transport security and authentication (service/tls_credentials.cpp, service/auth_token.cpp).

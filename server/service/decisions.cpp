@@ -310,7 +310,10 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
                      png ? "stops applied before the ACES curve of PNG previews" : "no PNG_PREVIEW encoding requested"));
   const bool nee = scene.emissive_triangles() > 0 || scene.environment_light();
   std::string lights = std::to_string(scene.emissive_triangles()) + " emissive triangles";
-  if (scene.environment_light()) lights += " + the environment";
+  if (scene.environment_light())
+    lights += scene.environment_map().empty()
+                  ? " + the environment"
+                  : " + the environment map " + scene.environment_map() + ", by luminance x solid angle, its share of the choices by power";
   out.push_back(make("next_event_estimation", "", nee ? "on" : "off", nee,
                      nee ? "light sampling over " + lights : "the scene has no emissive triangles and a black environment"));
   out.push_back(make("thin_lens", "", scene.thin_lens() ? "on" : "off", true,

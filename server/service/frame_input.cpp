@@ -28,10 +28,12 @@ void PendingInput::merge_newer(PendingInput&& newer) {
     camera.reset();
     transforms.clear();
     lods.clear();
+    lights.clear();
   }
   if (newer.camera) camera = newer.camera;
   for (auto& [id, m] : newer.transforms) transforms[id] = m;
   for (auto& [id, level] : newer.lods) lods[id] = level;
+  for (auto& [id, m] : newer.lights) lights[id] = m;
   options.MergeFrom(newer.options);
   if (newer.resolution) resolution = newer.resolution;
   if (!newer.encodings.empty()) encodings = std::move(newer.encodings);
@@ -55,6 +57,17 @@ PendingInput parse_frame_input(const v1::FrameInput& in, const scene::Scene& sce
     if (!seen.insert(t.instance_id()).second)
       fail_invalid(field + ".instance_id = " + std::to_string(t.instance_id()) + " appears more than once in transforms");
     p.transforms[t.instance_id()] = check_transform(t, field);
+  }
+  seen.clear();
+  for (int i = 0; i < in.light_transforms_size(); ++i) {
+    const auto& t = in.light_transforms(i);
+    const std::string field = "light_transforms[" + std::to_string(i) + "]";
+    if (t.light_id() >= scene.lights.size())
+      fail_invalid(field + ".light_id = " + std::to_string(t.light_id()) + " is not a light id: scene '" + scene.name + "' has " +
+                   std::to_string(scene.lights.size()) + " punctual light(s)");
+    if (!seen.insert(t.light_id()).second)
+      fail_invalid(field + ".light_id = " + std::to_string(t.light_id()) + " appears more than once in light_transforms");
+    p.lights[t.light_id()] = check_light_transform(t, field);
   }
   seen.clear();
   for (int i = 0; i < in.lod_changes_size(); ++i) {

@@ -23,6 +23,7 @@ struct PendingInput {
   std::optional<scene::Camera> camera;
   std::map<uint32_t, glm::mat4> transforms;     // by instance id
   std::map<uint32_t, uint32_t> lods;            // by instance id
+  std::map<uint32_t, glm::mat4> lights;         // light to world, by light id
   v1::RenderOptions options;                    // only the fields that change
   std::optional<std::pair<uint32_t, uint32_t>> resolution;
   std::vector<v1::ImageEncoding> encodings;     // empty: unchanged

@@ -90,6 +90,14 @@ glm::mat4 check_transform(const v1::InstanceTransform& t, const std::string& fie
   return glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(rotation) * glm::scale(glm::mat4(1.0f), scale);
 }
 
+glm::mat4 check_light_transform(const v1::LightTransform& t, const std::string& field) {
+  if (!t.has_translation()) fail_invalid(field + ".translation is required");
+  if (!t.has_rotation()) fail_invalid(field + ".rotation is required");
+  const glm::vec3 translation = check_vec3(t.translation(), field + ".translation", k_max_coordinate);
+  const glm::quat rotation = check_quaternion(t.rotation(), field + ".rotation");
+  return glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(rotation);
+}
+
 void check_resolution(const v1::Resolution& r, const ServiceLimits& limits, const std::string& field) {
   const std::string max = std::to_string(limits.max_dimension);
   if (r.width() < 1 || r.width() > limits.max_dimension)

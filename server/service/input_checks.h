@@ -24,6 +24,8 @@ std::string format_float(float v);
 glm::vec3 check_vec3(const v1::Vec3& v, const std::string& field, float max_abs);
 // Unit quaternion within 1e-3; returned normalised.
 glm::quat check_quaternion(const v1::Quaternion& q, const std::string& field);
+// Light to world from a LightTransform (translation and rotation required).
+glm::mat4 check_light_transform(const v1::LightTransform& t, const std::string& field);
 
 // Position, orientation, field of view, thin lens and shutter (motion blur, RS-main 4.4).
 scene::Camera check_camera(const v1::Camera& c, const std::string& field);

@@ -124,6 +124,7 @@ scene::FrameState resolve_frame_state(const v1::FrameState& state, const scene::
   if (state.has_camera()) *in.mutable_camera() = state.camera();
   *in.mutable_transforms() = state.transforms();
   *in.mutable_lod_changes() = state.lod_changes();
+  *in.mutable_light_transforms() = state.light_transforms();
   PendingInput p;
   try {
     p = parse_frame_input(in, scene, limits);
@@ -134,6 +135,7 @@ scene::FrameState resolve_frame_state(const v1::FrameState& state, const scene::
   if (p.camera) out.camera = *p.camera;
   for (const auto& [id, m] : p.transforms) out.transforms.at(id) = m;
   for (const auto& [id, level] : p.lods) out.lods.at(id) = level;
+  for (const auto& [id, m] : p.lights) out.lights.at(id) = m;
   return out;
 }
 

@@ -94,6 +94,8 @@ grpc::Status RenderServiceImpl::GetServerStatus(grpc::ServerContext*, const v1::
     set_duration(lim->mutable_idle_timeout(), cfg.idle_timeout);
     lim->set_scene_dir(cfg.scene_dir.string());
     lim->set_max_reference_spp(l.max_reference_spp);
+    lim->set_max_environment_bytes(l.max_environment_bytes);
+    lim->set_max_environment_dimension(l.max_environment_dimension);
     for (const auto& m : session_methods()) resp->add_methods(m);
     uint64_t device_bytes = 0;
     const auto sessions = core_.registry.list();

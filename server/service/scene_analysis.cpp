@@ -58,9 +58,20 @@ v1::SceneAnalysis analyze_scene(const scene::Scene& s) {
     emissive += emissive_triangles_of(s, inst.lod_meshes.at(std::min<size_t>(inst.lod, inst.lod_meshes.size() - 1)));
   }
   a.set_lod_groups(groups);
+  for (size_t l = 0; l < s.lights.size(); ++l) {
+    auto* info = a.add_lights();
+    info->set_id(uint32_t(l));
+    info->set_name(s.lights[l].name);
+    const scene::LightType t = s.lights[l].type;
+    info->set_type(t == scene::LightType::kPoint ? "point" : t == scene::LightType::kSpot ? "spot" : "directional");
+  }
   a.set_emissive_triangles(emissive);
   const auto& env = s.environment.radiance;
-  a.set_environment_light(env.r > 0.0f || env.g > 0.0f || env.b > 0.0f);
+  const bool map_lights = s.environment.map && s.environment.map->weight_sum > 0.0 && s.environment.map->intensity > 0.0f;
+  a.set_environment_light(s.environment.map ? map_lights : (env.r > 0.0f || env.g > 0.0f || env.b > 0.0f));
+  if (s.environment.map)
+    a.set_environment_map(s.environment.map->name + " (" + std::to_string(s.environment.map->width) + " x " +
+                          std::to_string(s.environment.map->height) + " texels)");
   a.set_thin_lens(s.camera.aperture > 0.0f);
   const bool moves = !s.animation.camera.empty() || !s.animation.tracks.empty() || !s.animation.lod_schedule.empty();
   const float fps = s.animation.frames_per_second;

@@ -1,9 +1,12 @@
 #include "service/scene_source.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <span>
 
+#include "scene/environment_map.h"
 #include "scene/scene_io.h"
 #include "service/errors.h"
 
@@ -39,10 +42,20 @@ scene::Scene within_resource_limits(Load&& load) {
   }
 }
 
-bool is_scene_file(const fs::path& p) {
+std::string lower_extension(const fs::path& p) {
   auto ext = p.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+bool is_scene_file(const fs::path& p) {
+  const std::string ext = lower_extension(p);
   return ext == ".gltf" || ext == ".glb";
+}
+
+bool is_environment_file(const fs::path& p) {
+  const std::string ext = lower_extension(p);
+  return ext == ".hdr" || ext == ".exr";
 }
 
 bool inside(const fs::path& path, const fs::path& root) {
@@ -52,15 +65,16 @@ bool inside(const fs::path& path, const fs::path& root) {
   return true;
 }
 
-// The canonical file a client's path names, refused unless it lies inside the scene directory.
-fs::path resolve_path(const std::string& requested, const ServiceConfig& config) {
-  const std::string field = "scene.path";
+// The canonical file a client's path (`field`) names, refused unless it lies inside the scene
+// directory and is of the kind `accepted` admits (`kind` names it).
+fs::path resolve_path(const std::string& requested, const ServiceConfig& config, const std::string& field = "scene.path",
+                      bool (*accepted)(const fs::path&) = is_scene_file, const char* kind = "a .gltf or .glb file") {
   if (config.scene_dir.empty())
     fail(StatusCode::FAILED_PRECONDITION, field + " is refused: this server was started without a scene directory (--scene-dir)");
   if (requested.empty()) fail_invalid(field + " is empty");
   if (requested.size() > 4096) fail_invalid(field + " is " + std::to_string(requested.size()) + " characters long; at most 4096");
   if (requested.find('\0') != std::string::npos) fail_invalid(field + " contains a NUL character");
-  if (!is_scene_file(requested)) fail_invalid(field + " = '" + requested + "' is not a .gltf or .glb file");
+  if (!accepted(requested)) fail_invalid(field + " = '" + requested + "' is not " + kind);
   std::error_code ec;
   const fs::path root = fs::canonical(config.scene_dir, ec);
   if (ec) fail(StatusCode::FAILED_PRECONDITION, "the scene directory '" + config.scene_dir.string() + "' is not readable: " + ec.message());
@@ -74,6 +88,60 @@ fs::path resolve_path(const std::string& requested, const ServiceConfig& config)
   if (!fs::exists(resolved, ec)) fail(StatusCode::NOT_FOUND, field + " = '" + requested + "' does not exist in the scene directory");
   if (!fs::is_regular_file(resolved, ec)) fail_invalid(field + " = '" + requested + "' is not a regular file");
   return resolved;
+}
+
+std::string number(double v) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// SceneSource.environment: an HDR image from the scene directory or inline, held to
+// max_environment_bytes and max_environment_dimension (RESOURCE_EXHAUSTED past the dimension).
+scene::EnvironmentMap load_environment_source(const v1::EnvironmentSource& source, const ServiceConfig& config) {
+  const ServiceLimits& limits = config.limits;
+  const std::string field = "scene.environment";
+  scene::EnvironmentOptions options;
+  options.max_file_bytes = limits.max_environment_bytes;
+  options.max_dimension = limits.max_environment_dimension;
+  if (source.has_intensity()) {
+    if (!std::isfinite(source.intensity()) || source.intensity() < 0.0f)
+      fail_invalid(field + ".intensity = " + number(source.intensity()) + " is not a finite number >= 0");
+    options.intensity = source.intensity();
+  }
+  if (source.has_rotation_degrees()) {
+    if (!std::isfinite(source.rotation_degrees()))
+      fail_invalid(field + ".rotation_degrees = " + number(source.rotation_degrees()) + " is not finite");
+    options.rotation_degrees = source.rotation_degrees();
+  }
+  const std::string max_bytes = std::to_string(limits.max_environment_bytes);
+  try {
+    switch (source.source_case()) {
+      case v1::EnvironmentSource::kPath: {
+        const fs::path file = resolve_path(source.path(), config, field + ".path", is_environment_file, "a .hdr or .exr file");
+        const uint64_t size = fs::file_size(file);
+        if (size > limits.max_environment_bytes)
+          fail_invalid(field + ".path = '" + source.path() + "' is " + std::to_string(size) + " bytes; max_environment_bytes = " + max_bytes);
+        return scene::load_environment_map(file, options);
+      }
+      case v1::EnvironmentSource::kImage: {
+        const std::string& bytes = source.image();
+        if (bytes.empty()) fail_invalid(field + ".image is empty");
+        if (bytes.size() > limits.max_environment_bytes)
+          fail_invalid(field + ".image is " + std::to_string(bytes.size()) + " bytes; max_environment_bytes = " + max_bytes);
+        const std::string label = source.label().empty() ? "inline.hdr" : source.label();
+        if (label.size() > 256) fail_invalid(field + ".label is " + std::to_string(label.size()) + " characters long; at most 256");
+        std::span<const uint8_t> data(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
+        return scene::decode_environment_map(data, field + ".image (" + label + ")", options);
+      }
+      default:
+        fail_invalid(field + " is set without a source: set scene.environment.path or scene.environment.image");
+    }
+  } catch (const scene::SceneLimitError& e) {
+    fail(StatusCode::RESOURCE_EXHAUSTED, e.what() + std::string(" (max_environment_dimension)"));
+  } catch (const scene::SceneError& e) {
+    fail_invalid(e.what());
+  }
 }
 
 }  // namespace
@@ -116,6 +184,7 @@ std::shared_ptr<const scene::Scene> load_scene_source(const v1::SceneSource& sou
     fail_invalid("scene '" + s->name + "' has " + std::to_string(s->instances.size()) + " instances; max_instances = " +
                  std::to_string(limits.max_instances));
   if (s->instances.empty()) fail_invalid("scene '" + s->name + "' has no instances: nothing to render");
+  if (source.has_environment()) s->environment.map = load_environment_source(source.environment(), config);
   return s;
 }
 

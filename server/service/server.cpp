@@ -1,5 +1,6 @@
 #include "service/server.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include <unistd.h>
@@ -45,7 +46,8 @@ Server::Server(const gpu::Context& ctx, ServiceConfig config,
   grpc::ServerBuilder builder;
   builder.AddListeningPort(cfg.listen, credentials, &port_);
   builder.RegisterService(service_.get());
-  builder.SetMaxReceiveMessageSize(int(cfg.limits.max_scene_bytes) + k_slack_bytes);
+  // A CreateSession may carry an inline scene and an inline environment map.
+  builder.SetMaxReceiveMessageSize(int(std::min<uint64_t>(cfg.limits.max_scene_bytes + cfg.limits.max_environment_bytes + uint64_t(k_slack_bytes), uint64_t(INT32_MAX))));
   builder.SetMaxSendMessageSize(int(max_frame_bytes(cfg.limits.max_pixels)));
   // Dead clients are noticed (and their sessions' GPU state freed) within about 30 s.
   builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIME_MS, 20'000);

@@ -148,6 +148,8 @@ void Session::apply_locked(const PendingInput& input, std::string& reset_reason,
         recalibrate = "instance " + std::to_string(id) + ", which emits light, moved";
         break;
       }
+    for (const auto& [id, m] : input.lights)
+      if (recalibrate.empty() && m != frame_state_.lights.at(id)) recalibrate = "light " + std::to_string(id) + " moved";
   }
 
   // Every option the input changed (options/option_table.h, OnChange): one that applies to the
@@ -206,6 +208,7 @@ void Session::apply_locked(const PendingInput& input, std::string& reset_reason,
   if (input.camera) frame_state_.camera = *input.camera;
   for (const auto& [id, m] : input.transforms) frame_state_.transforms.at(id) = m;
   for (const auto& [id, level] : input.lods) frame_state_.lods.at(id) = level;
+  for (const auto& [id, m] : input.lights) frame_state_.lights.at(id) = m;
 }
 
 RenderedFrame Session::render(PendingInput input) {

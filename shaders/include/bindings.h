@@ -69,5 +69,6 @@
 #define SPEC_DORMANT_LIST 10    // domain_propagate: the list dispatch runs the previous frame's dormant deep domains (restir/domain_list_prev.glsl)
 #define SPEC_ALPHA_TEST 11      // textured variants, scenes with alpha-tested materials: rays are not forced opaque
 #define SPEC_PUNCTUAL 12        // passes that sample lights, scenes with punctual lights: the light table's punctual entries (include/scene_lights.glsl)
+#define SPEC_ENV_MAP 13         // scenes with an environment map: escaped rays and environment NEE read it (include/scene_lights.glsl)
 
 #endif

@@ -28,7 +28,7 @@ struct GpuShutter {
 struct GpuFrameConstants {
   GpuCamera camera;
   GpuShutter shutter;
-  vec4 environment;          // rgb constant environment radiance, a = 1 if it is sampled by NEE
+  vec4 environment;          // rgb constant environment radiance (without a map), a = 1 if the environment is sampled by NEE
   uint width;
   uint height;
   uint frame_index;
@@ -58,8 +58,9 @@ struct GpuFrameConstants {
   uint pad0;
   uvec2 lights;
   uvec2 prev_lights;
-  uint pad1;
-  uint pad2;
+  // The environment map's GpuEnvironmentMap record by device address (include/environment_data.h;
+  // read only where SPEC_ENV_MAP is on), 0 for the constant environment.
+  uvec2 environment_map;
 };
 
 // history_flags bits.

@@ -3,7 +3,9 @@
 // either frame, the density of a light hit by another strategy, and the environment. The light
 // table holds the emissive triangles and, in scenes that have them, the punctual lights
 // (KHR_lights_punctual; compiled in by SPEC_PUNCTUAL, bound only then); one alias table chooses
-// among them by power, the constant environment is chosen with probability env_select_prob.
+// among them by power, the environment is chosen with probability env_select_prob: a constant
+// colour (sampled uniformly over the sphere), or an equirectangular map (compiled in by SPEC_ENV_MAP,
+// read by the device address of the frame constants; sampled by luminance x solid angle).
 // Solid-angle densities throughout, except for a punctual light: a delta, whose sample's `pdf` is
 // the probability of choosing it. The emitter and light records and the frame's light totals are
 // read here only.
@@ -13,6 +15,7 @@
 #extension GL_EXT_buffer_reference_uvec2 : require
 
 #include "include/bindings.h"
+#include "include/environment_data.h"
 #include "include/frame_data.h"
 #include "include/scene_data.h"
 #include "restir/gris.h"
@@ -53,16 +56,94 @@ float emitter_pdf_solid_angle(float select_pmf, float area, float distance, floa
   return area_to_solid_angle_pdf(select_pmf / area, distance * distance, cos_light);
 }
 
-// The environment's radiance arriving along -dir (a constant; the same in both frames).
-vec3 environment_radiance(vec3 dir) { return u_frame.environment.rgb; }
+// The environment map (scenes that have one, SPEC_ENV_MAP): its record and tables by device
+// address (include/environment_data.h); the same map in both frames (a session constant).
+layout(constant_id = SPEC_ENV_MAP) const bool k_env_map = false;
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer EnvironmentMapRecord { GpuEnvironmentMap map; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer EnvironmentTexels { vec4 texels[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer EnvironmentCdf { float values[]; };
+
+GpuEnvironmentMap env_map() { return EnvironmentMapRecord(u_frame.environment_map).map; }
+
+// The map's texel that a unit direction falls in.
+uvec2 env_map_texel(GpuEnvironmentMap m, vec3 dir, out float v) {
+  vec2 uv = environment_map_uv(dir, m.rotation_cos, m.rotation_sin);
+  v = uv.y;
+  return environment_map_texel(uv, m.width, m.height);
+}
+
+// Probability that the map's sampler picks texel (i, j): its row's by the marginal CDF times its
+// column's by the row's conditional CDF.
+float env_map_texel_probability(GpuEnvironmentMap m, uint i, uint j) {
+  EnvironmentCdf marginal = EnvironmentCdf(m.marginal);
+  EnvironmentCdf conditional = EnvironmentCdf(m.conditional);
+  uint row = j * (m.width + 1u);
+  return (marginal.values[j + 1u] - marginal.values[j]) * (conditional.values[row + i + 1u] - conditional.values[row + i]);
+}
+
+// Solid-angle density with which the map's sampler (alone) picks a unit direction.
+float env_map_pdf(vec3 dir) {
+  GpuEnvironmentMap m = env_map();
+  float v;
+  uvec2 t = env_map_texel(m, dir, v);
+  return environment_map_solid_angle_pdf(env_map_texel_probability(m, t.x, t.y), m.width, m.height, v);
+}
+
+// Index k of n intervals with cdf[k] <= x < cdf[k + 1], over the n + 1 entries from `base`
+// (ascending, 0 to 1), never an empty interval: a row or texel of zero weight is never chosen.
+uint env_map_find_interval(EnvironmentCdf cdf, uint base, uint n, float x) {
+  uint lo = 0u, hi = n + 1u;  // the first entry above x lies in [lo, hi]
+  while (lo < hi) {
+    uint mid = (lo + hi) / 2u;
+    if (cdf.values[base + mid] <= x) lo = mid + 1u;
+    else hi = mid;
+  }
+  uint k = min(lo == 0u ? 0u : lo - 1u, n - 1u);
+  while (k > 0u && !(cdf.values[base + k + 1u] > cdf.values[base + k])) --k;  // x at the top of an empty tail
+  return k;
+}
+
+// A direction by the map's sampler from u in [0, 1)^2: a row by the marginal CDF, a column by the
+// row's conditional CDF, then uniformly within the texel in UV.
+vec3 env_map_sample(vec2 u) {
+  GpuEnvironmentMap m = env_map();
+  EnvironmentCdf marginal = EnvironmentCdf(m.marginal);
+  EnvironmentCdf conditional = EnvironmentCdf(m.conditional);
+  uint j = env_map_find_interval(marginal, 0u, m.height, u.y);
+  uint row = j * (m.width + 1u);
+  uint i = env_map_find_interval(conditional, row, m.width, u.x);
+  float dv = (u.y - marginal.values[j]) / (marginal.values[j + 1u] - marginal.values[j]);
+  float du = (u.x - conditional.values[row + i]) / (conditional.values[row + i + 1u] - conditional.values[row + i]);
+  vec2 uv = vec2((float(i) + clamp(du, 0.0, 1.0)) / float(m.width), (float(j) + clamp(dv, 0.0, 1.0)) / float(m.height));
+  return environment_map_direction(uv, m.rotation_cos, m.rotation_sin);
+}
+
+// The environment's radiance arriving along -dir: the constant, or the map's texel (nearest: the
+// radiance is piecewise constant over the texels the sampler's density is constant over). The same
+// in both frames.
+vec3 environment_radiance(vec3 dir) {
+  if (!k_env_map) return u_frame.environment.rgb;
+  GpuEnvironmentMap m = env_map();
+  float v;
+  uvec2 t = env_map_texel(m, normalize(dir), v);
+  return EnvironmentTexels(m.radiance).texels[t.y * m.width + t.x].rgb;
+}
 
 // Whether the environment emits at all (a camera ray that escapes sees emission).
-bool environment_emits() { return luminance(u_frame.environment.rgb) > 0.0; }
+bool environment_emits() { return k_env_map || luminance(u_frame.environment.rgb) > 0.0; }
 
 // Whether next-event estimation samples the environment.
 bool env_is_sampled() { return u_frame.environment.a > 0.0; }
 
-float environment_pdf() { return u_frame.env_select_prob * (1.0 / (4.0 * PI)); }
+// Solid-angle density with which the environment's own sampler picks a unit direction: the map's,
+// or uniform over the sphere.
+float environment_direction_pdf(vec3 dir) { return k_env_map ? env_map_pdf(normalize(dir)) : 1.0 / (4.0 * PI); }
+
+// The current frame's light sampler's density of an escaped direction (0 unless NEE samples the environment).
+float environment_pdf(vec3 dir) {
+  if (!env_is_sampled()) return 0.0;
+  return u_frame.env_select_prob * environment_direction_pdf(dir);
+}
 
 // The densities with which either frame's light sampler picks a light that another strategy hit
 // (sampling/emitter_pdf.h with that frame's totals): an emitter's point, and the environment.
@@ -72,9 +153,10 @@ float emitter_light_pdf(bool prev, vec3 emission, float area, bool double_sided,
   return emitter_solid_angle_pdf(total, env_select, emission, area, double_sided, dist, cos_light);
 }
 
-float light_pdf_environment(bool prev) {
+// Either frame's light sampler's density of an escaped direction (the map is the same in both).
+float light_pdf_environment(bool prev, vec3 dir) {
   if (!env_is_sampled()) return 0.0;
-  return (prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob) * (1.0 / (4.0 * PI));
+  return (prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob) * environment_direction_pdf(dir);
 }
 
 // Whether the emitter power totals of the two frames agree (to 1e-5: with the camera, render-space
@@ -170,13 +252,14 @@ bool choose_light(vec3 u, out uint index) {
   return true;
 }
 
-// The environment as light sample u chose it.
-LightSample environment_light_sample(vec3 u) {
+// The environment as light sample u chose it, in either frame: its radiance and density are those
+// of the direction (the texel it falls in), as every other strategy evaluates them for MIS.
+LightSample environment_light_sample(bool prev, vec3 u) {
   LightSample ls = light_sample_none();
-  ls.direction = sample_uniform_sphere(u.xy);
+  ls.direction = k_env_map ? env_map_sample(u.xy) : sample_uniform_sphere(u.xy);
   ls.distance = 1.0 / 0.0;
   ls.radiance = environment_radiance(ls.direction);
-  ls.pdf = environment_pdf();
+  ls.pdf = light_pdf_environment(prev, ls.direction);
   return ls;
 }
 
@@ -187,8 +270,8 @@ bool sample_light(vec3 x, vec3 u, out LightSample ls) {
   uint index;
   if (!choose_light(u, index)) return false;
   if (index == LIGHT_ENVIRONMENT) {
-    ls = environment_light_sample(u);
-    return true;
+    ls = environment_light_sample(false, u);
+    return ls.pdf > 0.0;
   }
   if (k_punctual && index >= u_frame.emitter_count) return punctual_light_at(false, index - u_frame.emitter_count, x, ls);
   GpuEmitter e = b_emitters[index];
@@ -234,8 +317,7 @@ bool sample_light_in(bool prev, vec3 x, vec3 u, out LightSample ls) {
   uint index;
   if (!choose_light(u, index)) return false;
   if (index == LIGHT_ENVIRONMENT) {
-    ls = environment_light_sample(u);
-    ls.pdf = light_pdf_environment(true);
+    ls = environment_light_sample(true, u);
     return ls.pdf > 0.0;
   }
   if (k_punctual && index >= u_frame.emitter_count) return punctual_light_at(true, index - u_frame.emitter_count, x, ls);

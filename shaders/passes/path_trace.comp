@@ -59,7 +59,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     RayHit rh;
     if (!trace_closest(origin, dir, RAY_UNBOUNDED, rh)) {
       float w = 1.0;
-      if (k_env_nee && prev_bsdf_pdf > 0.0) w = mis_power(prev_bsdf_pdf, environment_pdf());
+      if (k_env_nee && prev_bsdf_pdf > 0.0) w = mis_power(prev_bsdf_pdf, environment_pdf(dir));
       radiance += throughput * environment_radiance(dir) * w;
       break;
     }

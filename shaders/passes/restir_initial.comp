@@ -212,13 +212,16 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
     bool hit = trace_closest(spawn(v), d, RAY_UNBOUNDED, h);
     Vertex w;
     float edge = 0.0;
-    vec3 le = environment_radiance(d);
-    float pl = light_pdf_environment(false);
+    vec3 le;
+    float pl;
     if (hit) {
       w = load_vertex(false, h, d, 0.0);
       edge = length(w.position - v.position);
       le = w.emission;
       pl = light_pdf_emitter(false, w.material_emission, w.area, w.double_sided, edge, w.cos_in);
+    } else {
+      le = environment_radiance(d);
+      pl = light_pdf_environment(false, d);
     }
     if (luminance(le) > 0.0) {
       float m = technique_weight(false, pl, pdf);

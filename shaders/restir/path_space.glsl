@@ -323,7 +323,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
       if (!(path_end && escaped)) return shift_fail(r, j == 0u ? SHIFT_FAIL_PRIMARY : SHIFT_FAIL_REPLAY);
       if (rule_end(v, true, 0.0, camera_distance, 1.0)) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
       le = environment_radiance(dir);
-      pl = light_pdf_environment(prev);
+      pl = light_pdf_environment(prev, dir);
       break;
     }
     if (path_end && escaped) return shift_fail(r, j == 0u ? SHIFT_FAIL_PRIMARY : SHIFT_FAIL_REPLAY);
@@ -432,7 +432,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
       }
     } else if (to_environment) {
       if (!nee && !rule_end(v, true, 0.0, camera_distance, 1.0)) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
-      tail = environment_radiance(d) * technique_weight(nee, light_pdf_environment(prev), scatter_pdf(v, d));
+      tail = environment_radiance(d) * technique_weight(nee, light_pdf_environment(prev, d), scatter_pdf(v, d));
     } else if (to_punctual) {
       tail = lk.radiance;  // NEE is the light's only strategy: MIS weight 1
       r.light_pdf_end = lk.pdf;

@@ -146,8 +146,8 @@ SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {
       return r;
     }
     if (hit == (last && escaped)) return replay_fail(r, SHIFT_FAIL_REPLAY);  // must hit, or escape at an escaped end
-    vec3 le = environment_radiance(dir);
-    float pl = light_pdf_environment(prev);
+    vec3 le;
+    float pl;
     if (hit) {
       Vertex w = load_vertex(prev, h, dir, 0.0);  // past the reconnection vertex
       if (!last) {
@@ -158,6 +158,9 @@ SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {
       if (nee && w.cos_in < SHIFT_MIN_COS) return replay_fail(r, SHIFT_FAIL_STRUCTURE);
       le = w.emission;
       pl = light_pdf_emitter(prev, w.material_emission, w.area, w.double_sided, length(w.position - v.position), w.cos_in);
+    } else {
+      le = environment_radiance(dir);
+      pl = light_pdf_environment(prev, dir);
     }
     if (!(luminance(le) > 0.0)) return replay_fail(r, SHIFT_FAIL_ZERO);
     r.light_pdf_end = pl;

@@ -6,28 +6,11 @@
 
 #include "gpu/gpu_context.h"
 #include "render/renderer.h"
+#include "support/image_moments.h"
 #include "support/test_scenes.h"
 
 namespace strata::test {
 namespace {
-
-struct ImageMoments {
-  double mean = 0.0;
-  double std_error = 0.0;  // of the mean over pixels (pixels are independent estimates)
-};
-
-ImageMoments channel_moments(const image::Image& img, int channel) {
-  size_t n = size_t(img.width) * img.height;
-  double sum = 0.0, sum2 = 0.0;
-  for (size_t i = 0; i < n; ++i) {
-    double v = img.rgba[4 * i + size_t(channel)];
-    sum += v;
-    sum2 += v * v;
-  }
-  double mean = sum / double(n);
-  double var = std::max(0.0, sum2 / double(n) - mean * mean);
-  return {mean, std::sqrt(var / double(n))};
-}
 
 class Furnace : public GpuTest {};
 

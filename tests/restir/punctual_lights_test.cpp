@@ -13,6 +13,7 @@
 
 #include "gpu/gpu_context.h"
 #include "render/renderer.h"
+#include "restir/sequence_runs.h"
 #include "scene/scene_io.h"
 #include "support/test_scenes.h"
 #include "support/unbiasedness.h"
@@ -145,16 +146,11 @@ INSTANTIATE_TEST_SUITE_P(Methods, PunctualUnits, ::testing::Values("pt", "restir
 // lights) with punctual lights added.
 struct Case {
   std::string name;
-  std::string method;
-  uint32_t max_depth = 4;
   std::function<void(scene::Scene&)> lights;
-  std::function<scene::FrameState(const scene::Scene&, uint32_t)> state = [](const scene::Scene& s, uint32_t) {
-    return s.frame_state(0);
-  };
-  std::function<void(render::RestirOptions&)> options = [](render::RestirOptions&) {};
+  SequenceRun run;
 };
 
-constexpr uint32_t kSize = 16, kFrames = 4, kRuns = 64, kReferenceRuns = 24, kReferenceSpp = 64;
+constexpr uint32_t kRuns = 64, kReferenceRuns = 24, kReferenceSpp = 64;
 
 void add_point(scene::Scene& s) { s.lights.push_back(make_light(scene::LightType::kPoint, 1.5f, {0.4f, 1.5f, 0.2f})); }
 void add_spot(scene::Scene& s) {
@@ -184,50 +180,6 @@ scene::FrameState moving_point(const scene::Scene& s, uint32_t f) {
   return st;
 }
 
-image::Image sequence_mean(const scene::Scene& s, const Case& c, uint32_t seed) {
-  render::RenderSettings rs;
-  rs.width = kSize;
-  rs.height = kSize;
-  rs.method = c.method;
-  rs.max_depth = c.max_depth;
-  rs.seed = seed;
-  c.options(rs.restir);
-  render::Renderer renderer(gpu_context(), s, rs);
-  image::Image mean;
-  for (uint32_t f = 0; f < kFrames; ++f) {
-    auto r = renderer.render(c.state(s, f), f);
-    if (f == 0) continue;  // frames 1 .. F-1 reuse history
-    if (mean.rgba.empty()) mean = r.image;
-    else
-      for (size_t i = 0; i < mean.rgba.size(); ++i) mean.rgba[i] += r.image.rgba[i];
-  }
-  for (float& v : mean.rgba) v /= float(kFrames - 1);
-  return mean;
-}
-
-RunningImage reference(const scene::Scene& s, const Case& c) {
-  RunningImage out(kSize, kSize);
-  for (uint32_t r = 0; r < kReferenceRuns; ++r) {
-    render::RenderSettings rs;
-    rs.width = kSize;
-    rs.height = kSize;
-    rs.spp = kReferenceSpp;
-    rs.max_depth = c.max_depth;
-    rs.seed = 90000 + r;
-    image::Image mean;
-    for (uint32_t f = 1; f < kFrames; ++f) {
-      render::Renderer renderer(gpu_context(), s, rs);
-      auto img = renderer.render(c.state(s, f), f).image;
-      if (mean.rgba.empty()) mean = img;
-      else
-        for (size_t i = 0; i < mean.rgba.size(); ++i) mean.rgba[i] += img.rgba[i];
-    }
-    for (float& v : mean.rgba) v /= float(kFrames - 1);
-    out.add(mean);
-  }
-  return out;
-}
-
 class PunctualUnbiased : public GpuTest, public ::testing::WithParamInterface<Case> {};
 
 TEST_P(PunctualUnbiased, MatchesPathTracedReference) {
@@ -235,9 +187,9 @@ TEST_P(PunctualUnbiased, MatchesPathTracedReference) {
   scene::Scene s = scene::builtin_scene("cornell");
   c.lights(s);
   s.validate();
-  const RunningImage ref = reference(s, c);
-  RunningImage method(kSize, kSize);
-  for (uint32_t r = 0; r < kRuns; ++r) method.add(sequence_mean(s, c, 1000 + r));
+  const RunningImage ref = pt_reference(s, c.run, kReferenceRuns, kReferenceSpp);
+  RunningImage method(c.run.size, c.run.size);
+  for (uint32_t r = 0; r < kRuns; ++r) method.add(sequence_mean(s, c.run, 1000 + r));
   BiasReport report = compare_to_reference(method, ref, 4);
   std::printf("%s: %s\n", c.name.c_str(), report.describe().c_str());
   EXPECT_TRUE(report.passed) << c.name << ": " << report.describe();
@@ -246,18 +198,15 @@ TEST_P(PunctualUnbiased, MatchesPathTracedReference) {
 std::vector<Case> cases() {
   auto temporal_only = [](render::RestirOptions& o) { o.spatial = false; };
   std::vector<Case> v;
-  v.push_back({.name = "di_all_lights", .method = "restir-di", .max_depth = 2, .lights = add_all});
-  v.push_back({.name = "di_moving_point", .method = "restir-di", .max_depth = 2, .lights = add_point, .state = moving_point,
-               .options = temporal_only});
-  v.push_back({.name = "gather_all_lights", .method = "restir-gather", .lights = add_all});
-  v.push_back({.name = "gather_moving_point", .method = "restir-gather", .lights = add_point, .state = moving_point,
-               .options = temporal_only});
-  v.push_back({.name = "splat_spot_directional", .method = "restir-splat", .lights = [](scene::Scene& s) {
+  v.push_back({"di_all_lights", add_all, {.method = "restir-di", .max_depth = 2}});
+  v.push_back({"di_moving_point", add_point, {.method = "restir-di", .max_depth = 2, .state = moving_point, .options = temporal_only}});
+  v.push_back({"gather_all_lights", add_all, {.method = "restir-gather"}});
+  v.push_back({"gather_moving_point", add_point, {.method = "restir-gather", .state = moving_point, .options = temporal_only}});
+  v.push_back({"splat_spot_directional", [](scene::Scene& s) {
                  add_spot(s);
                  add_directional(s);
-               }, .options = temporal_only});
-  v.push_back({.name = "splat_moving_point", .method = "restir-splat", .lights = add_point, .state = moving_point,
-               .options = temporal_only});
+               }, {.method = "restir-splat", .options = temporal_only}});
+  v.push_back({"splat_moving_point", add_point, {.method = "restir-splat", .state = moving_point, .options = temporal_only}});
   return v;
 }
 

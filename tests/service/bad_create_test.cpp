@@ -98,6 +98,29 @@ TEST_F(BadCreateTest, EveryBadRequestGetsItsStatusAndMessage) {
   add("unknown encoding", [](auto& r) { r.clear_encodings(); r.add_encodings(static_cast<v1::ImageEncoding>(9)); }, invalid,
       "encodings[0] = 9 is not an image encoding");
   add("encoding twice", [](auto& r) { r.add_encodings(v1::IMAGE_ENCODING_RAW_RGBA16F); }, invalid, "requested twice");
+  // Environment maps (SceneSource.environment).
+  std::ofstream(scene_dir_.path / "sky.png") << "\x89PNG\r\n\x1a\n";
+  add("environment without a source", [](auto& r) { r.mutable_scene()->mutable_environment()->set_intensity(2.0f); }, invalid,
+      "scene.environment is set without a source");
+  add("environment not an HDR image", [](auto& r) { r.mutable_scene()->mutable_environment()->set_image("not an image at all"); },
+      invalid, "is not an HDR image (Radiance .hdr or OpenEXR)");
+  add("environment path of another kind", [](auto& r) { r.mutable_scene()->mutable_environment()->set_path("sky.png"); }, invalid,
+      "scene.environment.path = 'sky.png' is not a .hdr or .exr file");
+  add("environment path outside", [](auto& r) { r.mutable_scene()->mutable_environment()->set_path("../sky.hdr"); },
+      StatusCode::PERMISSION_DENIED, "outside the scene directory");
+  add("missing environment file", [](auto& r) { r.mutable_scene()->mutable_environment()->set_path("missing.hdr"); },
+      StatusCode::NOT_FOUND, "scene.environment.path = 'missing.hdr' does not exist");
+  add("NaN environment intensity", [&](auto& r) {
+    r.mutable_scene()->mutable_environment()->set_image("x");
+    r.mutable_scene()->mutable_environment()->set_intensity(nan);
+  }, invalid, "scene.environment.intensity = nan is not a finite number >= 0");
+  add("infinite environment rotation", [&](auto& r) {
+    r.mutable_scene()->mutable_environment()->set_image("x");
+    r.mutable_scene()->mutable_environment()->set_rotation_degrees(std::numeric_limits<float>::infinity());
+  }, invalid, "scene.environment.rotation_degrees = inf is not finite");
+  add("oversize environment", [&](auto& r) {
+    r.mutable_scene()->mutable_environment()->set_image(std::string(config_.limits.max_environment_bytes + 1, 'x'));
+  }, invalid, "max_environment_bytes = " + std::to_string(config_.limits.max_environment_bytes));
   ASSERT_GE(cases.size(), 20u);
 
   const uint64_t before = background.frames();

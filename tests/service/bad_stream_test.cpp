@@ -96,6 +96,12 @@ TEST_F(BadStreamTest, EveryBadInputEndsItsStreamWithStatusAndMessage) {
   }, invalid, "camera.shutter = 2 is outside [0, 1]");
   add("unknown instance id", false, [](auto& in) { *in.add_transforms() = identity(99); }, invalid,
       "transforms[0].instance_id = 99 is not an instance id: scene 'cornell' has 4 instances (ids 0..3)");
+  add("unknown light id", false, [](auto& in) {
+    auto* l = in.add_light_transforms();
+    l->set_light_id(0);
+    *l->mutable_translation() = identity(0).translation();
+    *l->mutable_rotation() = identity(0).rotation();
+  }, invalid, "light_transforms[0].light_id = 0 is not a light id: scene 'cornell' has 0 punctual light(s)");
   add("same instance twice", false, [](auto& in) {
     *in.add_transforms() = identity(1);
     *in.add_transforms() = identity(1);

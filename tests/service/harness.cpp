@@ -39,6 +39,7 @@ service::ServiceConfig test_config(const std::filesystem::path& scene_dir) {
   c.limits.max_pixels = 640 * 480;
   c.limits.max_dimension = 1024;
   c.limits.max_scene_bytes = 256 << 10;
+  c.limits.max_environment_bytes = 64 << 10;
   c.limits.max_instances = 64;
   c.limits.max_spp = 64;
   c.limits.max_depth = 32;

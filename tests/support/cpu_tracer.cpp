@@ -9,6 +9,8 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "scene/environment_map.h"
+
 namespace strata::test {
 namespace {
 
@@ -103,7 +105,9 @@ glm::dvec3 trace_path(const CpuScene& scene, CpuRay ray, uint32_t max_depth, Pcg
   for (uint32_t depth = 0; depth < max_depth; ++depth) {
     const std::optional<CpuHit> hit = intersect(scene, ray);
     if (!hit) {
-      radiance += throughput * glm::dvec3(scene.environment.radiance);
+      const glm::vec3 sky = scene.environment.map ? scene::environment_radiance(*scene.environment.map, glm::vec3(ray.direction))
+                                                  : scene.environment.radiance;
+      radiance += throughput * glm::dvec3(sky);
       break;
     }
     const CpuTriangle& tri = scene.triangles[hit->scene_triangle];
