@@ -23,36 +23,47 @@ vec3 srgb_to_linear(vec3 c) {
   return mix(c * (1.0 / 12.92), pow((c + 0.055) * (1.0 / 1.055), vec3(2.4)), greaterThan(c, vec3(0.04045)));
 }
 
+// A texel index wrapped into [0, n): i lies in [-1, 2n] (sample_texture folds UVs into one period
+// of every wrap mode, [0, 2] for repeat and mirror repeat, [-1, 2] for clamp), so that a
+// compare and an add or subtract wrap it. An integer remainder would be exact too, but a vector
+// remainder is a scalar division per lane on a CPU device.
 int wrap_texel(int i, int n, uint mode) {
   if (mode == TEXTURE_WRAP_CLAMP) return clamp(i, 0, n - 1);
-  if (mode == TEXTURE_WRAP_MIRROR) {
-    int m = i % (2 * n);
-    if (m < 0) m += 2 * n;
-    return m < n ? m : 2 * n - 1 - m;
-  }
-  int m = i % n;
-  return m < 0 ? m + n : m;
+  int period = 2 * n;
+  int m = i < 0 ? i + period : (i >= period ? i - period : i);  // i mod 2n
+  if (mode == TEXTURE_WRAP_MIRROR) return m < n ? m : period - 1 - m;
+  return m >= n ? m - n : m;
 }
 
-vec4 texel_at(GpuMipLevel l, ivec2 p, uint sampling) {
-  uint x = uint(wrap_texel(p.x, int(l.width), (sampling >> TEXTURE_WRAP_U_SHIFT) & 3u));
-  uint y = uint(wrap_texel(p.y, int(l.height), (sampling >> TEXTURE_WRAP_V_SHIFT) & 3u));
+// A texel, its RGB decoded to linear where `sampling` has TEXTURE_SRGB.
+vec4 texel_at(GpuMipLevel l, uint x, uint y, uint sampling) {
   vec4 c = unpackUnorm4x8(b_texels[l.offset + y * l.width + x]);
   if ((sampling & TEXTURE_SRGB) != 0u) c.rgb = srgb_to_linear(c.rgb);
   return c;
 }
 
-// One level at uv (texel centres at half-integers, as Vulkan samples), nearest or bilinear.
+// One level at uv (texel centres at half-integers, as Vulkan samples), nearest or bilinear; each
+// axis's texel indices are wrapped once for the texels that share them.
 vec4 sample_level(uint level, vec2 uv, bool linear, uint sampling) {
   GpuMipLevel l = b_texture_levels[level];
-  vec2 p = uv * vec2(float(l.width), float(l.height));
-  if (!linear) return texel_at(l, ivec2(floor(p)), sampling);
+  ivec2 n = ivec2(l.width, l.height);
+  uint wrap_u = (sampling >> TEXTURE_WRAP_U_SHIFT) & 3u;
+  uint wrap_v = (sampling >> TEXTURE_WRAP_V_SHIFT) & 3u;
+  vec2 p = uv * vec2(n);
+  if (!linear) {
+    ivec2 i = ivec2(floor(p));
+    return texel_at(l, uint(wrap_texel(i.x, n.x, wrap_u)), uint(wrap_texel(i.y, n.y, wrap_v)), sampling);
+  }
   p -= 0.5;
   vec2 f = floor(p);
   ivec2 i = ivec2(f);
   f = p - f;
-  vec4 a = mix(texel_at(l, i, sampling), texel_at(l, i + ivec2(1, 0), sampling), f.x);
-  vec4 b = mix(texel_at(l, i + ivec2(0, 1), sampling), texel_at(l, i + ivec2(1, 1), sampling), f.x);
+  uint x0 = uint(wrap_texel(i.x, n.x, wrap_u));
+  uint x1 = uint(wrap_texel(i.x + 1, n.x, wrap_u));
+  uint y0 = uint(wrap_texel(i.y, n.y, wrap_v));
+  uint y1 = uint(wrap_texel(i.y + 1, n.y, wrap_v));
+  vec4 a = mix(texel_at(l, x0, y0, sampling), texel_at(l, x1, y0, sampling), f.x);
+  vec4 b = mix(texel_at(l, x0, y1, sampling), texel_at(l, x1, y1, sampling), f.x);
   return mix(a, b, f.y);
 }
 
@@ -60,9 +71,11 @@ vec4 sample_level(uint level, vec2 uv, bool linear, uint sampling) {
 // of detail is log2 of the footprint in level-0 texels (Akenine-Moeller et al. 2019, "Texture Level
 // of Detail Strategies for Real-Time Ray Tracing", Eq. 34 with the width already projected); at
 // or below 0 the magnification filter reads level 0, above it the minification filter reads the
-// level(s) the sampler's mipmap mode picks.
-vec4 sample_texture(uint t, vec2 uv, float width_uv) {
+// level(s) the sampler's mipmap mode picks. `alpha_only`: only the alpha channel is wanted (the RGB
+// returned is then not decoded from sRGB).
+vec4 sample_texture(uint t, vec2 uv, float width_uv, bool alpha_only) {
   GpuTexture tex = b_textures[t];
+  if (alpha_only) tex.sampling &= ~TEXTURE_SRGB;
   // A non-finite UV reads the first texel; a finite one is folded into one period of every wrap mode
   // (repeat and mirror repeat over 2, clamp just outside [0, 1]) so that texel indices stay small.
   if (any(isnan(uv)) || any(isinf(uv))) uv = vec2(0.0);
@@ -89,12 +102,12 @@ vec4 sample_texture(uint t, vec2 uv, float width_uv) {
 // A material's texture at a surface whose texCoord sets are `uv` (xy set 0, zw set 1) with
 // `density` UV units per render-space unit (x set 0, y set 1), for a footprint `width` wide in
 // render space. KHR_texture_transform moves the UV and scales the footprint with it.
-vec4 sample_texture_ref(GpuTextureRef r, vec4 uv, vec2 density, float width) {
+vec4 sample_texture_ref(GpuTextureRef r, vec4 uv, vec2 density, float width, bool alpha_only) {
   vec2 t = r.tex_coord == 1u ? uv.zw : uv.xy;
   float d = r.tex_coord == 1u ? density.y : density.x;
   vec2 tuv = vec2(dot(r.row0.xyz, vec3(t, 1.0)), dot(r.row1.xyz, vec3(t, 1.0)));
   float scale = sqrt(abs(r.row0.x * r.row1.y - r.row0.y * r.row1.x));
-  return sample_texture(uint(r.texture), tuv, width * d * scale);
+  return sample_texture(uint(r.texture), tuv, width * d * scale, alpha_only);
 }
 
 // Coverage of an alpha-tested material (alpha factor x base colour texture alpha, the texture read
@@ -102,7 +115,7 @@ vec4 sample_texture_ref(GpuTextureRef r, vec4 uv, vec2 density, float width) {
 bool alpha_keeps(GpuMaterialTextures m, vec4 uv) {
   if (m.alpha_mode != ALPHA_MASK) return true;
   float a = m.alpha;
-  if (m.base_color.texture >= 0) a *= sample_texture_ref(m.base_color, uv, vec2(0.0), 0.0).a;
+  if (m.base_color.texture >= 0) a *= sample_texture_ref(m.base_color, uv, vec2(0.0), 0.0, true).a;
   return a >= m.alpha_cutoff;
 }
 
