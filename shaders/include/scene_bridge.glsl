@@ -198,17 +198,20 @@ SurfaceMaterial material_at(SurfaceHit s, float footprint) {
   float metallic = m.base_color_metallic.a;
   float roughness = m.emission_roughness.a;
   vec3 emission = m.emission_roughness.rgb;
-  if (t.base_color.texture >= 0) base *= sample_texture_ref(t.base_color, s.uv, s.uv_density, footprint, false).rgb;
-  if (t.metallic_roughness.texture >= 0) {
-    vec4 mr = sample_texture_ref(t.metallic_roughness, s.uv, s.uv_density, footprint, false);
-    roughness *= mr.g;
-    metallic *= mr.b;
+  // The material's textures (0 base colour, 1 metallic-roughness, 2 emissive) in one loop over
+  // those it has, so that each call site of material_at holds one lookup (textures.glsl).
+  for (uint k = next_material_texture(t, 0u); k < 3u; k = next_material_texture(t, k + 1u)) {
+    GpuTextureRef r = k == 0u ? t.base_color : (k == 1u ? t.metallic_roughness : t.emissive);
+    vec4 c = sample_texture_ref(r, s.uv, s.uv_density, footprint, false);
+    if (k == 0u) base *= c.rgb;
+    if (k == 1u) {
+      roughness *= c.g;
+      metallic *= c.b;
+    }
+    if (k == 2u) emission *= c.rgb;
   }
-  vec3 light_emission = emission;
-  if (t.emissive.texture >= 0) {
-    light_emission = b_light_emission[s.triangle_index].rgb;
-    emission *= sample_texture_ref(t.emissive, s.uv, s.uv_density, footprint, false).rgb;
-  }
+  vec3 light_emission = m.emission_roughness.rgb;
+  if (t.emissive.texture >= 0) light_emission = b_light_emission[s.triangle_index].rgb;
   SurfaceMaterial r;
   r.bsdf = make_bsdf(base, metallic, roughness, m.specular);
   r.metallic = metallic;

@@ -31,6 +31,15 @@ void triangle_texcoords(GpuPrimitive prim, uint flags, uint triangle, out vec4 t
                    b_vertices[prim.vertex_offset + b_indices[base + 2u]], prim, triangle, flags, t0, t1, t2);
 }
 
+// The first of a material's textures k, k + 1, ... below 3 (0 base colour, 1 metallic-roughness,
+// 2 emissive) that it has; 3 when none.
+uint next_material_texture(GpuMaterialTextures m, uint k) {
+  if (k == 0u && m.base_color.texture >= 0) return 0u;
+  if (k <= 1u && m.metallic_roughness.texture >= 0) return 1u;
+  if (k <= 2u && m.emissive.texture >= 0) return 2u;
+  return 3u;
+}
+
 // Whether a material has a texture (else its texCoords are never read: the alpha test of an
 // untextured material is its factor alone).
 bool material_textured(GpuMaterialTextures m) {
