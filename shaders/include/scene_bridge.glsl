@@ -121,14 +121,18 @@ SurfaceHit load_hit_with(GpuInstance inst, RayHit h) {
   s.shading_normal = nl > 0.0 && !isnan(nl) ? n / nl : s.geo_normal;
 #ifdef STRATA_TEXTURES
   GpuMaterialTextures mt = b_material_textures[prim.material];
-  vec4 t0;
-  vec4 t1;
-  vec4 t2;
-  triangle_texcoords(prim, mt.flags, h.triangle, t0, t1, t2);
-  s.uv = interpolate_texcoords(t0, t1, t2, h.bary);
-  s.uv_density = texcoord_density(t0, t1, t2, s.area);
+  s.uv = vec4(0.0);
+  s.uv_density = vec2(0.0);
   s.triangle_index = prim.index_offset / 3u + h.triangle;
-  if (mt.normal.texture >= 0) s.shading_normal = normal_mapped(inst, prim, mt, h, p0, p1, p2, t0, t1, t2, s);
+  if (material_textured(mt)) {  // an untextured material in a textured scene reads no texCoords
+    vec4 t0;
+    vec4 t1;
+    vec4 t2;
+    vertex_texcoords(v0, v1, v2, prim, h.triangle, mt.flags, t0, t1, t2);
+    s.uv = interpolate_texcoords(t0, t1, t2, h.bary);
+    s.uv_density = texcoord_density(t0, t1, t2, s.area);
+    if (mt.normal.texture >= 0) s.shading_normal = normal_mapped(inst, prim, mt, h, p0, p1, p2, t0, t1, t2, s);
+  }
 #endif
   if (dot(s.shading_normal, s.geo_normal) < 0.0) s.shading_normal = -s.shading_normal;
   s.material = prim.material;
@@ -194,17 +198,20 @@ SurfaceMaterial material_at(SurfaceHit s, float footprint) {
   float metallic = m.base_color_metallic.a;
   float roughness = m.emission_roughness.a;
   vec3 emission = m.emission_roughness.rgb;
-  if (t.base_color.texture >= 0) base *= sample_texture_ref(t.base_color, s.uv, s.uv_density, footprint).rgb;
-  if (t.metallic_roughness.texture >= 0) {
-    vec4 mr = sample_texture_ref(t.metallic_roughness, s.uv, s.uv_density, footprint);
-    roughness *= mr.g;
-    metallic *= mr.b;
+  // The material's textures (0 base colour, 1 metallic-roughness, 2 emissive) in one loop over
+  // those it has, so that each call site of material_at holds one lookup (textures.glsl).
+  for (uint k = next_material_texture(t, 0u); k < 3u; k = next_material_texture(t, k + 1u)) {
+    GpuTextureRef r = k == 0u ? t.base_color : (k == 1u ? t.metallic_roughness : t.emissive);
+    vec4 c = sample_texture_ref(r, s.uv, s.uv_density, footprint, false);
+    if (k == 0u) base *= c.rgb;
+    if (k == 1u) {
+      roughness *= c.g;
+      metallic *= c.b;
+    }
+    if (k == 2u) emission *= c.rgb;
   }
-  vec3 light_emission = emission;
-  if (t.emissive.texture >= 0) {
-    light_emission = b_light_emission[s.triangle_index].rgb;
-    emission *= sample_texture_ref(t.emissive, s.uv, s.uv_density, footprint).rgb;
-  }
+  vec3 light_emission = m.emission_roughness.rgb;
+  if (t.emissive.texture >= 0) light_emission = b_light_emission[s.triangle_index].rgb;
   SurfaceMaterial r;
   r.bsdf = make_bsdf(base, metallic, roughness, m.specular);
   r.metallic = metallic;
@@ -231,7 +238,7 @@ vec3 emitter_radiance(bool prev, vec3 table_emission, uint instance, uint geomet
   vec4 t1;
   vec4 t2;
   triangle_texcoords(prim, t.flags, triangle, t0, t1, t2);
-  vec4 texel = sample_texture_ref(t.emissive, interpolate_texcoords(t0, t1, t2, bary), vec2(0.0), 0.0);
+  vec4 texel = sample_texture_ref(t.emissive, interpolate_texcoords(t0, t1, t2, bary), vec2(0.0), 0.0, false);
   return b_materials[prim.material].emission_roughness.rgb * texel.rgb;
 #else
   return table_emission;
@@ -541,13 +548,16 @@ SurfaceHit primary_surface_hit(bool prev, GpuPrimaryHit p) {
   s.triangle_index = 0u;
   if ((p.flags & PRIMARY_HIT) != 0u) {
     GpuPrimitive prim = b_primitives[instance_in(prev, p.instance).primitive_base + p.geometry];
-    vec4 t0;
-    vec4 t1;
-    vec4 t2;
-    triangle_texcoords(prim, b_material_textures[prim.material].flags, p.triangle, t0, t1, t2);
-    s.uv = interpolate_texcoords(t0, t1, t2, p.bary);
-    s.uv_density = texcoord_density(t0, t1, t2, s.area);
+    GpuMaterialTextures mt = b_material_textures[prim.material];
     s.triangle_index = prim.index_offset / 3u + p.triangle;
+    if (material_textured(mt)) {
+      vec4 t0;
+      vec4 t1;
+      vec4 t2;
+      triangle_texcoords(prim, mt.flags, p.triangle, t0, t1, t2);
+      s.uv = interpolate_texcoords(t0, t1, t2, p.bary);
+      s.uv_density = texcoord_density(t0, t1, t2, s.area);
+    }
   }
 #endif
   return s;

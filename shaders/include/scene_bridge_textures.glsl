@@ -9,20 +9,41 @@
 // in material_at and load_hit, and with k_alpha_test the alpha test of every ray's candidates.
 #include "include/textures.glsl"
 
-// The texCoord sets of a triangle's vertices (xy set 0, zw set 1: TEXCOORD_1 where the scene has it).
+// The texCoord sets of a primitive's triangle (xy set 0, zw set 1: TEXCOORD_1 where the scene has
+// it), whose vertex records v0, v1, v2 are already read.
+void vertex_texcoords(GpuVertex v0, GpuVertex v1, GpuVertex v2, GpuPrimitive prim, uint triangle, uint flags, out vec4 t0,
+                      out vec4 t1, out vec4 t2) {
+  t0 = vec4(v0.position_u.w, v0.normal_v.w, 0.0, 0.0);
+  t1 = vec4(v1.position_u.w, v1.normal_v.w, 0.0, 0.0);
+  t2 = vec4(v2.position_u.w, v2.normal_v.w, 0.0, 0.0);
+  if ((flags & MATERIAL_VERTEX_EXTRAS) != 0u) {
+    uint base = prim.index_offset + 3u * triangle;
+    t0.zw = b_vertex_extras[prim.vertex_offset + b_indices[base]].uv1.xy;
+    t1.zw = b_vertex_extras[prim.vertex_offset + b_indices[base + 1u]].uv1.xy;
+    t2.zw = b_vertex_extras[prim.vertex_offset + b_indices[base + 2u]].uv1.xy;
+  }
+}
+
+// The same, reading the vertex records.
 void triangle_texcoords(GpuPrimitive prim, uint flags, uint triangle, out vec4 t0, out vec4 t1, out vec4 t2) {
   uint base = prim.index_offset + 3u * triangle;
-  uint i0 = prim.vertex_offset + b_indices[base];
-  uint i1 = prim.vertex_offset + b_indices[base + 1u];
-  uint i2 = prim.vertex_offset + b_indices[base + 2u];
-  t0 = vec4(b_vertices[i0].position_u.w, b_vertices[i0].normal_v.w, 0.0, 0.0);
-  t1 = vec4(b_vertices[i1].position_u.w, b_vertices[i1].normal_v.w, 0.0, 0.0);
-  t2 = vec4(b_vertices[i2].position_u.w, b_vertices[i2].normal_v.w, 0.0, 0.0);
-  if ((flags & MATERIAL_VERTEX_EXTRAS) != 0u) {
-    t0.zw = b_vertex_extras[i0].uv1.xy;
-    t1.zw = b_vertex_extras[i1].uv1.xy;
-    t2.zw = b_vertex_extras[i2].uv1.xy;
-  }
+  vertex_texcoords(b_vertices[prim.vertex_offset + b_indices[base]], b_vertices[prim.vertex_offset + b_indices[base + 1u]],
+                   b_vertices[prim.vertex_offset + b_indices[base + 2u]], prim, triangle, flags, t0, t1, t2);
+}
+
+// The first of a material's textures k, k + 1, ... below 3 (0 base colour, 1 metallic-roughness,
+// 2 emissive) that it has; 3 when none.
+uint next_material_texture(GpuMaterialTextures m, uint k) {
+  if (k == 0u && m.base_color.texture >= 0) return 0u;
+  if (k <= 1u && m.metallic_roughness.texture >= 0) return 1u;
+  if (k <= 2u && m.emissive.texture >= 0) return 2u;
+  return 3u;
+}
+
+// Whether a material has a texture (else its texCoords are never read: the alpha test of an
+// untextured material is its factor alone).
+bool material_textured(GpuMaterialTextures m) {
+  return m.base_color.texture >= 0 || m.metallic_roughness.texture >= 0 || m.normal.texture >= 0 || m.emissive.texture >= 0;
 }
 
 vec4 interpolate_texcoords(vec4 t0, vec4 t1, vec4 t2, vec2 bary) { return (1.0 - bary.x - bary.y) * t0 + bary.x * t1 + bary.y * t2; }
@@ -103,7 +124,7 @@ vec3 normal_mapped(GpuInstance inst, GpuPrimitive prim, GpuMaterialTextures mt, 
   if (!(tl > 0.0) || isinf(tl)) return n;
   t /= tl;
   vec3 b = cross(n, t) * sign;
-  vec3 m = sample_texture_ref(mt.normal, s.uv, s.uv_density, 0.0).xyz * 2.0 - 1.0;
+  vec3 m = sample_texture_ref(mt.normal, s.uv, s.uv_density, 0.0, false).xyz * 2.0 - 1.0;
   m.xy *= mt.normal_scale;
   vec3 mapped = m.x * t + m.y * b + m.z * n;
   float ml = length(mapped);

@@ -23,78 +23,100 @@ vec3 srgb_to_linear(vec3 c) {
   return mix(c * (1.0 / 12.92), pow((c + 0.055) * (1.0 / 1.055), vec3(2.4)), greaterThan(c, vec3(0.04045)));
 }
 
+// A texel index wrapped into [0, n): i lies in [-1, 2n] (sample_texture folds UVs into one period
+// of every wrap mode, [0, 2] for repeat and mirror repeat, [-1, 2] for clamp), so that a
+// compare and an add or subtract wrap it. An integer remainder would be exact too, but a vector
+// remainder is a scalar division per lane on a CPU device.
 int wrap_texel(int i, int n, uint mode) {
   if (mode == TEXTURE_WRAP_CLAMP) return clamp(i, 0, n - 1);
-  if (mode == TEXTURE_WRAP_MIRROR) {
-    int m = i % (2 * n);
-    if (m < 0) m += 2 * n;
-    return m < n ? m : 2 * n - 1 - m;
-  }
-  int m = i % n;
-  return m < 0 ? m + n : m;
+  int period = 2 * n;
+  int m = i < 0 ? i + period : (i >= period ? i - period : i);  // i mod 2n
+  if (mode == TEXTURE_WRAP_MIRROR) return m < n ? m : period - 1 - m;
+  return m >= n ? m - n : m;
 }
 
-vec4 texel_at(GpuMipLevel l, ivec2 p, uint sampling) {
-  uint x = uint(wrap_texel(p.x, int(l.width), (sampling >> TEXTURE_WRAP_U_SHIFT) & 3u));
-  uint y = uint(wrap_texel(p.y, int(l.height), (sampling >> TEXTURE_WRAP_V_SHIFT) & 3u));
+// A texel, its RGB decoded to linear where `sampling` has TEXTURE_SRGB.
+vec4 texel_at(GpuMipLevel l, uint x, uint y, uint sampling) {
   vec4 c = unpackUnorm4x8(b_texels[l.offset + y * l.width + x]);
   if ((sampling & TEXTURE_SRGB) != 0u) c.rgb = srgb_to_linear(c.rgb);
   return c;
-}
-
-// One level at uv (texel centres at half-integers, as Vulkan samples), nearest or bilinear.
-vec4 sample_level(uint level, vec2 uv, bool linear, uint sampling) {
-  GpuMipLevel l = b_texture_levels[level];
-  vec2 p = uv * vec2(float(l.width), float(l.height));
-  if (!linear) return texel_at(l, ivec2(floor(p)), sampling);
-  p -= 0.5;
-  vec2 f = floor(p);
-  ivec2 i = ivec2(f);
-  f = p - f;
-  vec4 a = mix(texel_at(l, i, sampling), texel_at(l, i + ivec2(1, 0), sampling), f.x);
-  vec4 b = mix(texel_at(l, i + ivec2(0, 1), sampling), texel_at(l, i + ivec2(1, 1), sampling), f.x);
-  return mix(a, b, f.y);
 }
 
 // Texture `t` at uv with a footprint `width_uv` wide in UV units (0: the finest level). The level
 // of detail is log2 of the footprint in level-0 texels (Akenine-Moeller et al. 2019, "Texture Level
 // of Detail Strategies for Real-Time Ray Tracing", Eq. 34 with the width already projected); at
 // or below 0 the magnification filter reads level 0, above it the minification filter reads the
-// level(s) the sampler's mipmap mode picks.
-vec4 sample_texture(uint t, vec2 uv, float width_uv) {
+// level(s) the sampler's mipmap mode picks: one level (nearest, or none), or two weighted by the
+// fraction of the level of detail (linear). Each level is read nearest or bilinear (texel centres
+// at half-integers, as Vulkan samples). `alpha_only`: only the alpha channel is wanted (the RGB
+// returned is then not decoded from sRGB).
+//
+// The levels and the texels of a level are loops with one texel read in them, not one read per
+// texel and level written out: every call site of a lookup is inlined, and the passes' textured
+// variants hold dozens (material_at at each kind of vertex, the alpha test in every ray query),
+// whose compile time on lavapipe grows with the code.
+vec4 sample_texture(uint t, vec2 uv, float width_uv, bool alpha_only) {
   GpuTexture tex = b_textures[t];
+  uint sampling = alpha_only ? tex.sampling & ~TEXTURE_SRGB : tex.sampling;
+  uint wrap_u = (sampling >> TEXTURE_WRAP_U_SHIFT) & 3u;
+  uint wrap_v = (sampling >> TEXTURE_WRAP_V_SHIFT) & 3u;
   // A non-finite UV reads the first texel; a finite one is folded into one period of every wrap mode
   // (repeat and mirror repeat over 2, clamp just outside [0, 1]) so that texel indices stay small.
   if (any(isnan(uv)) || any(isinf(uv))) uv = vec2(0.0);
   vec2 folded = uv - 2.0 * floor(uv * 0.5);
   vec2 clamped = clamp(uv, vec2(-1.0), vec2(2.0));
-  uv.x = ((tex.sampling >> TEXTURE_WRAP_U_SHIFT) & 3u) == TEXTURE_WRAP_CLAMP ? clamped.x : folded.x;
-  uv.y = ((tex.sampling >> TEXTURE_WRAP_V_SHIFT) & 3u) == TEXTURE_WRAP_CLAMP ? clamped.y : folded.y;
+  uv.x = wrap_u == TEXTURE_WRAP_CLAMP ? clamped.x : folded.x;
+  uv.y = wrap_v == TEXTURE_WRAP_CLAMP ? clamped.y : folded.y;
   GpuMipLevel base = b_texture_levels[tex.first_level];
   float texels = width_uv * sqrt(float(base.width) * float(base.height));
   float lambda = texels > 0.0 ? log2(texels) : -1.0;
-  if (!(lambda > 0.0)) return sample_level(tex.first_level, uv, (tex.sampling & TEXTURE_MAG_LINEAR) != 0u, tex.sampling);
-  bool min_linear = (tex.sampling & TEXTURE_MIN_LINEAR) != 0u;
-  uint mip = (tex.sampling >> TEXTURE_MIP_SHIFT) & 3u;
-  float last = float(tex.level_count - 1u);
-  lambda = min(lambda, last);
-  if (mip == TEXTURE_MIP_NONE) return sample_level(tex.first_level, uv, min_linear, tex.sampling);
-  if (mip == TEXTURE_MIP_NEAREST) return sample_level(tex.first_level + uint(floor(lambda + 0.5)), uv, min_linear, tex.sampling);
-  float lo = floor(lambda);
-  vec4 a = sample_level(tex.first_level + uint(lo), uv, min_linear, tex.sampling);
-  if (lambda == lo) return a;
-  return mix(a, sample_level(tex.first_level + uint(lo) + 1u, uv, min_linear, tex.sampling), lambda - lo);
+  uint first = tex.first_level;
+  uint levels = 1u;
+  float upper = 0.0;  // the weight of the second level
+  bool linear = (sampling & TEXTURE_MAG_LINEAR) != 0u;
+  if (lambda > 0.0) {
+    linear = (sampling & TEXTURE_MIN_LINEAR) != 0u;
+    uint mip = (sampling >> TEXTURE_MIP_SHIFT) & 3u;
+    lambda = min(lambda, float(tex.level_count - 1u));
+    float lo = floor(lambda);
+    if (mip == TEXTURE_MIP_NEAREST) first += uint(floor(lambda + 0.5));
+    if (mip == TEXTURE_MIP_LINEAR) {
+      first += uint(lo);
+      upper = lambda - lo;
+      levels = upper > 0.0 ? 2u : 1u;
+    }
+  }
+  uint corners = linear ? 4u : 1u;
+  vec4 sum = vec4(0.0);
+  for (uint k = 0u; k < levels; ++k) {
+    GpuMipLevel l = b_texture_levels[first + k];
+    ivec2 n = ivec2(l.width, l.height);
+    vec2 p = uv * vec2(n) - (linear ? 0.5 : 0.0);
+    vec2 f = floor(p);
+    ivec2 i = ivec2(f);
+    f = p - f;
+    float level_weight = k == 0u ? 1.0 - upper : upper;
+    for (uint c = 0u; c < corners; ++c) {
+      uvec2 d = uvec2(c & 1u, c >> 1u);  // bilinear: (0, 0), (1, 0), (0, 1), (1, 1); nearest: (0, 0)
+      vec2 w = mix(1.0 - f, f, vec2(d));
+      float weight = level_weight * (linear ? w.x * w.y : 1.0);
+      uint x = uint(wrap_texel(i.x + int(d.x), n.x, wrap_u));
+      uint y = uint(wrap_texel(i.y + int(d.y), n.y, wrap_v));
+      sum += weight * texel_at(l, x, y, sampling);
+    }
+  }
+  return sum;
 }
 
 // A material's texture at a surface whose texCoord sets are `uv` (xy set 0, zw set 1) with
 // `density` UV units per render-space unit (x set 0, y set 1), for a footprint `width` wide in
 // render space. KHR_texture_transform moves the UV and scales the footprint with it.
-vec4 sample_texture_ref(GpuTextureRef r, vec4 uv, vec2 density, float width) {
+vec4 sample_texture_ref(GpuTextureRef r, vec4 uv, vec2 density, float width, bool alpha_only) {
   vec2 t = r.tex_coord == 1u ? uv.zw : uv.xy;
   float d = r.tex_coord == 1u ? density.y : density.x;
   vec2 tuv = vec2(dot(r.row0.xyz, vec3(t, 1.0)), dot(r.row1.xyz, vec3(t, 1.0)));
   float scale = sqrt(abs(r.row0.x * r.row1.y - r.row0.y * r.row1.x));
-  return sample_texture(uint(r.texture), tuv, width * d * scale);
+  return sample_texture(uint(r.texture), tuv, width * d * scale, alpha_only);
 }
 
 // Coverage of an alpha-tested material (alpha factor x base colour texture alpha, the texture read
@@ -102,7 +124,7 @@ vec4 sample_texture_ref(GpuTextureRef r, vec4 uv, vec2 density, float width) {
 bool alpha_keeps(GpuMaterialTextures m, vec4 uv) {
   if (m.alpha_mode != ALPHA_MASK) return true;
   float a = m.alpha;
-  if (m.base_color.texture >= 0) a *= sample_texture_ref(m.base_color, uv, vec2(0.0), 0.0).a;
+  if (m.base_color.texture >= 0) a *= sample_texture_ref(m.base_color, uv, vec2(0.0), 0.0, true).a;
   return a >= m.alpha_cutoff;
 }
 

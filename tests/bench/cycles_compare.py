@@ -10,7 +10,9 @@ both renderers evaluate exactly: in Cycles each imported material is rewired to 
 (roughness 0: Lambert) fed by the same base-colour factor and texture, plus an Emission shader
 with the glTF emission (emissiveFactor x KHR_materials_emissive_strength). Cycles is set to match
 strata's estimator where it matters for the mean: no clamping, no denoising, a box pixel filter,
-caustics on, max bounces = strata's max depth - 1. Textures are read as sRGB by both.
+caustics on, max bounces = strata's max depth - 1. Textures are sRGB; Cycles gets each as a float
+image of its decoded texels, so that it filters linear values as strata does (it would interpolate
+an 8-bit image's sRGB values before decoding them).
 
     tests/bench/cycles_compare.py --out /tmp/cycles [--stratad build/release/server/stratad]
         [--size 256] [--strata-spp 1024] [--cycles-spp 1024] [--untextured]
@@ -223,6 +225,30 @@ def blender_main(argv):
         nt.links.new(diffuse.outputs["BSDF"], add.inputs[0])
         nt.links.new(emission.outputs["Emission"], add.inputs[1])
         nt.links.new(add.outputs["Shader"], output.inputs["Surface"])
+
+    # Cycles interpolates an 8-bit image's stored (sRGB) values and converts the result to linear;
+    # strata, like Vulkan's sRGB formats and glTF, decodes each texel first and interpolates linear
+    # values. Each sRGB image becomes a float image of its decoded texels (colour space Linear),
+    # which Cycles interpolates as it stores them: the same filter as strata's.
+    def linear_copy(img):
+        w, h = img.size
+        px = np.array(img.pixels[:], dtype=np.float64).reshape(-1, 4)
+        rgb = px[:, :3]
+        px[:, :3] = np.where(rgb <= 0.04045, rgb / 12.92, ((rgb + 0.055) / 1.055) ** 2.4)
+        out = bpy.data.images.new(img.name + " linear", w, h, alpha=True, float_buffer=True)
+        out.colorspace_settings.name = "Linear"
+        out.pixels[:] = px.astype(np.float32).ravel().tolist()
+        out.pack()
+        return out
+    linear = {}
+    for mat in bpy.data.materials:
+        if not mat.use_nodes:
+            continue
+        for node in mat.node_tree.nodes:
+            if node.type == "TEX_IMAGE" and node.image is not None and node.image.colorspace_settings.name == "sRGB":
+                if node.image.name not in linear:
+                    linear[node.image.name] = linear_copy(node.image)
+                node.image = linear[node.image.name]
 
     scene.render.image_settings.file_format = "OPEN_EXR"
     scene.render.image_settings.color_depth = "32"

@@ -3,6 +3,8 @@
 // two segments: every pixel's expectation is its texel's linear colour), read back per quadrant for
 // the texture's orientation (UV (0, 0) is the image's top-left corner) and its sRGB decoding; and an
 // alpha-masked quad in front of another, whose transparent half shows what lies behind it.
+#include <algorithm>
+
 #include <glm/glm.hpp>
 
 #include "gpu/gpu_context.h"
@@ -135,6 +137,41 @@ TEST_F(Textures, AlphaMaskShowsWhatLiesBehindItsTransparentTexels) {
   EXPECT_GT(left.b, 3.0f * left.r) << "the transparent half shows the blue quad behind";
   EXPECT_GT(right.r, 3.0f * right.b) << "the opaque half is the red quad";
   EXPECT_NEAR(right.r, 0.9f, 0.05f);
+}
+
+// The three wrap modes on a quad filling the view whose u runs over [-1, 2] (v over [0, 1]): a 2 x 1
+// texture, red then green, with nearest magnification, read at the middle of each sixth of the quad.
+TEST_F(Textures, WrapModesRepeatMirrorAndClampOutsideTheUnitSquare) {
+  struct Mode {
+    scene::TextureWrap wrap;
+    const char* name;
+    const char* texels;  // per sixth of u in [-1, 2]: R red, G green
+  };
+  // Sixths centred at u = -0.75, -0.25, 0.25, 0.75, 1.25, 1.75.
+  for (const Mode mode : {Mode{scene::TextureWrap::kRepeat, "repeat", "RGRGRG"},
+                          Mode{scene::TextureWrap::kMirroredRepeat, "mirrored repeat", "GRRGGR"},
+                          Mode{scene::TextureWrap::kClampToEdge, "clamp to edge", "RRRGGG"}}) {
+    SCOPED_TRACE(mode.name);
+    scene::Scene s;
+    s.name = "wrapped quad";
+    scene::Material m = lambert(glm::vec3(1.0f));
+    m.base_color_texture.texture = add_texture(s, image::Rgba8Image{2, 1, {rgba(255, 0, 0), rgba(0, 255, 0)}}, scene::ColorSpace::kLinear);
+    s.textures.textures.back().sampler.wrap_u = mode.wrap;
+    s.materials.push_back(m);
+    scene::Mesh quad = uv_quad(2.0f, 0.0f, 0);  // fills the view
+    quad.primitives[0].uvs = {{-1, 1}, {2, 1}, {2, 0}, {-1, 0}};
+    add_instance(s, quad);
+    frame_quad(s);
+    s.validate();
+    const image::Image out = render(s);
+    for (uint32_t k = 0; k < 6; ++k) {
+      const uint32_t x = uint32_t((float(k) + 0.5f) * float(kSize) / 6.0f);
+      const glm::vec3 c = block_mean(out, std::clamp(x, 2u, kSize - 2), 16);
+      const bool red = mode.texels[k] == 'R';
+      EXPECT_GT(red ? c.r : c.g, 0.8f) << "sixth " << k;
+      EXPECT_LT(red ? c.g : c.r, 0.2f) << "sixth " << k;
+    }
+  }
 }
 
 // An emitter whose emissive texture is 2 x 2 texels with nearest magnification is the same light as
