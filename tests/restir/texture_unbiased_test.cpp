@@ -25,6 +25,7 @@
 
 #include "gpu/gpu_context.h"
 #include "render/renderer.h"
+#include "restir/sequence_runs.h"
 #include "scene/scene_io.h"
 #include "scene/texture_mips.h"
 #include "support/test_scenes.h"
@@ -89,26 +90,10 @@ scene::FrameState moving_occluder(const scene::Scene& s, uint32_t f) {
 
 struct Case {
   std::string name;
-  std::string method;
-  std::function<void(render::RestirOptions&)> options = [](render::RestirOptions&) {};
+  SequenceRun run;
 };
 
-constexpr uint32_t kSize = 16, kFrames = 4, kRuns = 48, kReferenceRuns = 24, kReferenceSpp = 64, kMaxDepth = 4;
-
-template <typename Settings>
-image::Image frames_mean(const scene::Scene& s, const Settings& rs) {
-  render::Renderer renderer(gpu_context(), s, rs);
-  image::Image mean;
-  for (uint32_t f = 0; f < kFrames; ++f) {
-    auto r = renderer.render(moving_occluder(s, f), f);
-    if (f == 0) continue;  // frames 1 .. F-1 reuse history
-    if (mean.rgba.empty()) mean = r.image;
-    else
-      for (size_t i = 0; i < mean.rgba.size(); ++i) mean.rgba[i] += r.image.rgba[i];
-  }
-  for (float& v : mean.rgba) v /= float(kFrames - 1);
-  return mean;
-}
+constexpr uint32_t kRuns = 48, kReferenceRuns = 24, kReferenceSpp = 64;
 
 class TextureUnbiased : public GpuTest, public ::testing::WithParamInterface<Case> {};
 
@@ -121,27 +106,9 @@ class TextureUnbiased : public GpuTest, public ::testing::WithParamInterface<Cas
 TEST_P(TextureUnbiased, DISABLED_MatchesPathTracedReference) {
   const Case& c = GetParam();
   const scene::Scene s = textured_cornell();
-  RunningImage ref(kSize, kSize);
-  for (uint32_t r = 0; r < kReferenceRuns; ++r) {
-    render::RenderSettings rs;
-    rs.width = kSize;
-    rs.height = kSize;
-    rs.spp = kReferenceSpp;
-    rs.max_depth = kMaxDepth;
-    rs.seed = 90000 + r;
-    ref.add(frames_mean(s, rs));
-  }
-  RunningImage method(kSize, kSize);
-  for (uint32_t r = 0; r < kRuns; ++r) {
-    render::RenderSettings rs;
-    rs.width = kSize;
-    rs.height = kSize;
-    rs.method = c.method;
-    rs.max_depth = kMaxDepth;
-    rs.seed = 1000 + r;
-    c.options(rs.restir);
-    method.add(frames_mean(s, rs));
-  }
+  const RunningImage ref = pt_reference(s, c.run, kReferenceRuns, kReferenceSpp);
+  RunningImage method(c.run.size, c.run.size);
+  for (uint32_t r = 0; r < kRuns; ++r) method.add(sequence_mean(s, c.run, 1000 + r));
   const BiasReport report = compare_to_reference(method, ref, 4);
   std::printf("%s: %s\n", c.name.c_str(), report.describe().c_str());
   EXPECT_TRUE(report.passed) << c.name << ": " << report.describe();
@@ -150,8 +117,8 @@ TEST_P(TextureUnbiased, DISABLED_MatchesPathTracedReference) {
 std::vector<Case> cases() {
   auto temporal_only = [](render::RestirOptions& o) { o.spatial = false; };
   return {
-      {.name = "gather_textured_moving_alpha", .method = "restir-gather"},
-      {.name = "splat_textured_moving_alpha", .method = "restir-splat", .options = temporal_only},
+      {"gather_textured_moving_alpha", {.method = "restir-gather", .state = moving_occluder}},
+      {"splat_textured_moving_alpha", {.method = "restir-splat", .state = moving_occluder, .options = temporal_only}},
   };
 }
 
