@@ -49,8 +49,9 @@ std::vector<std::string> parse_warm_up(const std::string& list) {
   return out;
 }
 
-WarmUp::WarmUp(gpu::ContextOptions device, const ServiceConfig& config, std::vector<std::string> methods, unsigned threads)
-    : device_(std::move(device)), threads_(std::max(1u, threads)) {
+WarmUp::WarmUp(gpu::ContextOptions device, const ServiceConfig& config, std::vector<std::string> methods, unsigned threads,
+               const gpu::Context* service)
+    : device_(std::move(device)), threads_(std::max(1u, threads)), service_(service) {
   if (!methods.empty()) {
     v1::SceneSource source;
     source.set_builtin("carousel");
@@ -117,6 +118,12 @@ void WarmUp::run_job(const Job& job) {
     }
     if (job.state) job.state->pipelines_ = pipelines.size();
     const double seconds = gpu::warm_pipelines(device_, pipelines, threads_, stop_, /*readiness=*/!job.state);
+    // The service's device keeps them in its pipeline table (gpu::Context::cached_pipeline).
+    if (job.state && service_)
+      for (const auto& p : pipelines) {
+        if (stop_.load()) break;
+        gpu::ComputePipeline(*service_, p.shader, p.bindings, p.spec, p.push_constant_bytes);
+      }
     if (stop_.load()) {
       std::printf("stratad: %s: compiling the pipelines of %s stopped after %.1f s: the service stops\n", job.label.c_str(),
                   method.c_str(), seconds);

@@ -8,7 +8,10 @@
 //   pipelines of the session's own renderer, recorded from its own settings, so that the variants
 //   compiled (specialization constants, bindings) are exactly those its frames dispatch and each is
 //   compiled once. /readyz is not affected; frames and a log line say it.
-// Code compiled here lands in Mesa's disk cache, where the service's device finds it.
+// Code compiled here lands in Mesa's disk cache, where the service's device finds it. A session's
+// job then also creates the pipelines on the service's device (vkCreateComputePipelines: lavapipe
+// translates and optimises the SPIR-V there, about 2 s of CPU for restir-gather's), so that the
+// frame that takes over finds them in the device's pipeline table and only loads the code.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -49,7 +52,10 @@ class WarmUp {
  public:
   // Starts at once on a thread of its own; `methods` in the order to warm them (unknown names are
   // an std::invalid_argument naming --warm-up); `threads` devices compile in parallel.
-  WarmUp(gpu::ContextOptions device, const ServiceConfig& config, std::vector<std::string> methods, unsigned threads);
+  // `service`: the service's device, on which a session's job creates its pipelines after compiling
+  // them (null: none).
+  WarmUp(gpu::ContextOptions device, const ServiceConfig& config, std::vector<std::string> methods, unsigned threads,
+         const gpu::Context* service = nullptr);
   ~WarmUp();  // stops after the pipelines being compiled
   WarmUp(const WarmUp&) = delete;
   WarmUp& operator=(const WarmUp&) = delete;
@@ -71,6 +77,7 @@ class WarmUp {
   void run_job(const Job& job);
   const gpu::ContextOptions device_;
   const unsigned threads_;
+  const gpu::Context* const service_;
   const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   std::atomic<bool> stop_{false};
   std::mutex mu_;
