@@ -4,7 +4,7 @@
 // released when a stream ends, and re-created (history reset) by the next frame.
 //
 // Progressive start (`stratad serve`; a Session given a compiler): a session whose method is not pt
-// and not auto submits its renderer's exact pipelines to the compiler at creation, and until they
+// and not auto, and whose pipelines are not listed as compiled in Mesa's cache, submits its renderer's exact pipelines to the compiler at creation, and until they
 // are compiled its frames are rendered by pt at the same settings (lavapipe compiles pt's in about
 // a second, restir-gather's in about a minute and a half of CPU). Each such frame says so in its
 // pass decisions (a first entry named after the method, ran = false); the frame after the compile

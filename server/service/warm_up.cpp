@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "gpu/compiled_pipelines.h"
 #include "gpu/pipeline_warmup.h"
 #include "render/method_table.h"
 #include "service/options.h"
@@ -87,6 +88,16 @@ std::shared_ptr<const PipelineCompile> WarmUp::compile(std::shared_ptr<const sce
   return state;
 }
 
+bool WarmUp::compiled(const scene::Scene& scene, const render::RenderSettings& settings) const {
+  try {
+    gpu::Context recorder(device_);  // thrown away: its pipelines are layouts only
+    const auto pipelines = gpu::record_pipelines([&] { render::Renderer renderer(recorder, scene, settings); });
+    return gpu::all_compiled(pipelines, recorder.device_name());
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
 void WarmUp::run() {
   for (;;) {
     Job job;
@@ -112,9 +123,11 @@ void WarmUp::run_job(const Job& job) {
   const std::string& method = job.settings.method;
   try {
     std::vector<gpu::PipelineInfo> pipelines;
+    std::string device_name;
     {
       gpu::Context recorder(device_);  // thrown away: its pipelines are layouts only
       pipelines = gpu::record_pipelines([&] { render::Renderer renderer(recorder, *job.scene, job.settings); });
+      device_name = recorder.device_name();
     }
     if (job.state) job.state->pipelines_ = pipelines.size();
     const double seconds = gpu::warm_pipelines(device_, pipelines, threads_, stop_, /*readiness=*/!job.state);
@@ -124,6 +137,7 @@ void WarmUp::run_job(const Job& job) {
         if (stop_.load()) break;
         gpu::ComputePipeline(*service_, p.shader, p.bindings, p.spec, p.push_constant_bytes);
       }
+    if (!stop_.load()) gpu::note_compiled(pipelines, device_name);
     if (stop_.load()) {
       std::printf("stratad: %s: compiling the pipelines of %s stopped after %.1f s: the service stops\n", job.label.c_str(),
                   method.c_str(), seconds);

@@ -8,7 +8,9 @@
 //   pipelines of the session's own renderer, recorded from its own settings, so that the variants
 //   compiled (specialization constants, bindings) are exactly those its frames dispatch and each is
 //   compiled once. /readyz is not affected; frames and a log line say it.
-// Code compiled here lands in Mesa's disk cache, where the service's device finds it. A session's
+// Code compiled here lands in Mesa's disk cache, where the service's device finds it, and is listed
+// as compiled (gpu/compiled_pipelines.h): a session whose pipelines are all listed starts with its
+// method at once, as its first frame only loads their code. A session's
 // job then also creates the pipelines on the service's device (vkCreateComputePipelines: lavapipe
 // translates and optimises the SPIR-V there, about 2 s of CPU for restir-gather's), so that the
 // frame that takes over finds them in the device's pipeline table and only loads the code.
@@ -59,6 +61,11 @@ class WarmUp {
   ~WarmUp();  // stops after the pipelines being compiled
   WarmUp(const WarmUp&) = delete;
   WarmUp& operator=(const WarmUp&) = delete;
+
+  // Whether the pipelines a renderer with `settings` creates for `scene` were compiled into Mesa's
+  // disk cache before (gpu/compiled_pipelines.h): then its first frame only loads them. Records
+  // them on a device of its own (a few hundred ms); false when that fails.
+  bool compiled(const scene::Scene& scene, const render::RenderSettings& settings) const;
 
   // Compiles the pipelines a renderer with `settings` creates for `scene`, after the jobs queued
   // before it; `label` names it in the log line. A job that fails marks itself done (the renderer
