@@ -123,8 +123,7 @@ Runner add_serve_command(CLI::App& app) {
   cmd->add_flag("--progressive-start,!--no-progressive-start", a->progressive_start,
                 "a session whose method's pipelines are not compiled yet renders with pt while they compile in the "
                 "background, and with its method from the frame after (frames say so); off: its first frame waits for "
-                "the compile")
-      ->capture_default_str();
+                "the compile (on by default)");
   cmd->add_option("--metrics-listen", a->ops.metrics_listen, "host:port of the Prometheus /metrics page (e.g. 127.0.0.1:9464; off when not given)");
   cmd->add_option("--http", a->ops.http_listen, "host:port of the live dashboard (/dashboard, /events), the viewer (/view) and probes (/healthz, /readyz); off when not given");
   // Scale-out and security (deploy/, service/auth_gate.h, service/tls_credentials.h).
