@@ -30,10 +30,11 @@ struct ServeArgs {
   std::string device;
   bool validation = false;
   ops::OpsOptions ops;  // --metrics-listen, --http
-  // Off by default: on the 2-core machine measured (docs/BENCHMARKS.md) the zero-workgroup compile
-  // took more CPU than compiling at the first frame did.
+  // Off by default: at start it compiles every pipeline of the methods named, also those the first
+  // frame does not need, before any session asks for them (docs/BENCHMARKS.md).
   std::string warm_up = "none";
   unsigned warm_up_threads = std::max(1u, std::thread::hardware_concurrency());
+  bool progressive_start = true;
 };
 
 void write_port_file(const std::string& path, int port) {
@@ -57,14 +58,15 @@ int run_serve(ServeArgs& a) {
   a.config.idle_timeout = std::chrono::milliseconds(int64_t(a.idle_timeout_s * 1000.0));
   a.config.drain_timeout = std::chrono::milliseconds(int64_t(a.drain_timeout_s * 1000.0));
   a.config.validate();
-  const auto warm_methods = service::parse_warm_up(a.warm_up);
+  // The validation layer would report the compiling devices' dispatches without resources bound:
+  // neither the warm-up nor the progressive start then.
+  a.config.compile = {a.device, a.validation ? std::vector<std::string>{} : service::parse_warm_up(a.warm_up),
+                      a.warm_up_threads, a.progressive_start && !a.validation};
   ops::OpsEndpoints ops(a.ops);  // before the server: its interceptor sees every call; destroyed after it
   gpu::Context ctx({a.device, a.validation});
+  // The warm-up starts in the server's constructor, before the addresses are printed, so that
+  // /readyz answers 503 from its first request.
   service::Server server(ctx, a.config, ops.interceptors());
-  // Before the addresses are printed, so that /readyz answers 503 from its first request. The
-  // validation layer would report the warm-up's dispatches without resources bound: none then.
-  service::WarmUp warm_up({a.device, a.validation}, a.config, a.validation ? std::vector<std::string>{} : warm_methods,
-                          a.warm_up_threads);
   ops.attach(server);
   if (!a.port_file.empty()) write_port_file(a.port_file, server.port());
   std::cout << "stratad: serving strata.v1.RenderService on " << server.address() << " (device: " << ctx.device_name()
@@ -119,7 +121,12 @@ Runner add_serve_command(CLI::App& app) {
   cmd->add_option("--warm-up", a->warm_up,
                   "methods whose pipelines are compiled at start, in parallel (comma-separated, e.g. restir-gather, or all, or none); /readyz is 503 meanwhile")
       ->capture_default_str();
-  cmd->add_option("--warm-up-threads", a->warm_up_threads, "devices compiling pipelines in parallel at start")->capture_default_str();
+  cmd->add_option("--warm-up-threads", a->warm_up_threads, "devices compiling pipelines in parallel (at start, and for a progressive start)")
+      ->capture_default_str();
+  cmd->add_flag("--progressive-start,!--no-progressive-start", a->progressive_start,
+                "a session whose method's pipelines are not compiled yet renders with pt while they compile in the "
+                "background, and with its method from the frame after (frames say so); off: its first frame waits for "
+                "the compile (on by default)");
   cmd->add_option("--metrics-listen", a->ops.metrics_listen, "host:port of the Prometheus /metrics page (e.g. 127.0.0.1:9464; off when not given)");
   cmd->add_option("--http", a->ops.http_listen, "host:port of the live dashboard (/dashboard, /events), the viewer (/view) and probes (/healthz, /readyz); off when not given");
   // Scale-out and security (deploy/, service/auth_gate.h, service/tls_credentials.h).

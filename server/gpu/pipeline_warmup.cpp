@@ -8,6 +8,8 @@
 #include <set>
 #include <thread>
 
+#include "embedded_shaders.h"
+
 namespace strata::gpu {
 namespace {
 
@@ -53,7 +55,7 @@ std::vector<PipelineInfo> record_pipelines(const std::function<void()>& build) {
 WarmupProgress warmup_progress() {
   auto& s = state();
   std::lock_guard lock(s.mu);
-  return {s.done, s.total, s.planned > 0 || !s.keys.empty()};
+  return {s.done, s.total, s.planned > 0};
 }
 
 void warmup_begin() {
@@ -67,7 +69,7 @@ void warmup_end() {
 }
 
 double warm_pipelines(const ContextOptions& options, const std::vector<PipelineInfo>& pipelines, unsigned threads,
-                      const std::atomic<bool>& stop) {
+                      const std::atomic<bool>& stop, bool readiness) {
   const auto start = std::chrono::steady_clock::now();
   auto& s = state();
   std::vector<PipelineInfo> todo;
@@ -75,8 +77,13 @@ double warm_pipelines(const ContextOptions& options, const std::vector<PipelineI
     std::lock_guard lock(s.mu);
     for (const auto& p : pipelines)
       if (s.keys.insert(p.key()).second) todo.push_back(p);
-    s.total += todo.size();
+    if (readiness) s.total += todo.size();
   }
+  // The longest first (by SPIR-V size, which follows the compile time): the last pipeline to start
+  // is then a short one, and the threads finish close together.
+  std::stable_sort(todo.begin(), todo.end(), [](const PipelineInfo& a, const PipelineInfo& b) {
+    return shaders::spirv(a.shader).size() > shaders::spirv(b.shader).size();
+  });
   std::atomic<size_t> next{0};
   std::vector<std::thread> workers;
   const unsigned n = std::max(1u, std::min<unsigned>(threads, unsigned(todo.size())));
@@ -93,7 +100,7 @@ double warm_pipelines(const ContextOptions& options, const std::vector<PipelineI
             vkCmdDispatch(cmd, 0, 0, 0);  // compiles; runs nothing
           });
           std::lock_guard lock(state().mu);
-          ++state().done;
+          if (readiness) ++state().done;
         }
       } catch (const std::exception&) {
         // A warm-up that fails only costs the first frame its compile time.

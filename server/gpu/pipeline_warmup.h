@@ -36,7 +36,7 @@ std::vector<PipelineInfo> record_pipelines(const std::function<void()>& build);
 
 struct WarmupProgress {
   size_t done = 0, total = 0;
-  bool running = false;
+  bool running = false;  // between warmup_begin and warmup_end
 };
 WarmupProgress warmup_progress();
 // A warm-up about to record and compile (running from begin to end, as warmup_progress says).
@@ -45,9 +45,11 @@ void warmup_end();
 
 // Compiles `pipelines` on min(threads, pipelines) devices chosen by `options`, in parallel, and
 // returns when every one is in Mesa's disk cache (the devices are destroyed, which flushes it).
-// `stop` ends it early (after the pipelines in progress). Returns the seconds it took.
+// `stop` ends it early (after the pipelines in progress). The longest (by SPIR-V size) start first.
+// With `readiness` they count in warmup_progress (a start-time warm-up, which /readyz reports); a
+// session's compile does not. Returns the seconds it took.
 double warm_pipelines(const ContextOptions& options, const std::vector<PipelineInfo>& pipelines, unsigned threads,
-                      const std::atomic<bool>& stop);
+                      const std::atomic<bool>& stop, bool readiness = true);
 
 namespace detail {
 // For ComputePipeline: whether record_pipelines is running on this thread (then it records `info`).

@@ -126,7 +126,7 @@ void ViewerStream::create(const nlohmann::json& msg) {
   const service::SessionSpec spec = service::check_create_session(req, core_.config.limits);
   auto session = core_.registry.create(req.session_id(), "create.request.session_id", [&](const std::string& name) {
     auto scene = service::load_scene_source(req.scene(), core_.config);
-    return std::make_shared<service::Session>(name, std::move(scene), spec, core_.ctx, core_.metrics);
+    return std::make_shared<service::Session>(name, std::move(scene), spec, core_.ctx, core_.metrics, core_.progressive_start());
   });
   try {
     attach(session->name(), true);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace strata::service {
 
@@ -20,6 +21,16 @@ struct ServiceLimits {
   uint32_t max_reference_spp = 65536;     // RenderReference: target samples per pixel
   uint64_t max_environment_bytes = 64ull << 20;  // an environment file, inline or in the scene directory
   uint32_t max_environment_dimension = 4096;     // its width and height each (16 B of device memory a texel)
+};
+
+// Pipelines compiled ahead of their first dispatch (service/warm_up.h); `stratad serve` sets these.
+struct CompileConfig {
+  std::string device;                // the compiling devices' gpu::ContextOptions::device (the service's)
+  std::vector<std::string> warm_up;  // methods whose pipelines compile at start (`--warm-up`)
+  unsigned threads = 1;              // devices compiling in parallel
+  // A session whose method's pipelines are not compiled yet renders with pt meanwhile and takes
+  // its method from the frame after they are (service/session.h). Off: the first frame compiles them.
+  bool progressive_start = false;
 };
 
 // Transport security and authentication (service/tls_credentials.cpp, service/auth_token.cpp).
@@ -41,6 +52,7 @@ struct ServiceConfig {
   std::chrono::milliseconds end_grace{std::chrono::seconds(2)};  // a stream being ended whose write does not complete is cancelled after this
   uint32_t encode_threads = 2;
   std::filesystem::path reference_cache;     // RenderReference's cache; empty: render::ReferenceCache::default_dir()
+  CompileConfig compile;
   // Throws std::invalid_argument naming the setting and its allowed range.
   void validate() const;
 };

@@ -27,7 +27,7 @@ grpc::Status RenderServiceImpl::CreateSession(grpc::ServerContext*, const v1::Cr
     const SessionSpec spec = check_create_session(*req, core_.config.limits);
     auto session = core_.registry.create(req->session_id(), "session_id", [&](const std::string& name) {
       auto scene = load_scene_source(req->scene(), core_.config);
-      return std::make_shared<Session>(name, std::move(scene), spec, core_.ctx, core_.metrics);
+      return std::make_shared<Session>(name, std::move(scene), spec, core_.ctx, core_.metrics, core_.progressive_start());
     });
     *resp = session->describe(core_.config);
   });

@@ -37,6 +37,9 @@ Server::Server(const gpu::Context& ctx, ServiceConfig config,
   config.validate();
   core_ = std::make_unique<ServiceCore>(ctx, std::move(config));
   const auto& cfg = core_->config;
+  if (cfg.compile.progressive_start || !cfg.compile.warm_up.empty())
+    core_->compiler = std::make_unique<WarmUp>(gpu::ContextOptions{cfg.compile.device, false}, cfg, cfg.compile.warm_up,
+                                               cfg.compile.threads, &ctx);
   check_exposure(cfg.listen, cfg.security);  // before anything listens
   const auto credentials = server_credentials(cfg.security);
   service_ = make_render_service(*core_);  // gated by the bearer token when one is configured

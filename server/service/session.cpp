@@ -1,6 +1,7 @@
 #include "service/session.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <glm/glm.hpp>
 
 #include "include/frame_data.h"
@@ -18,6 +19,16 @@ double ms_between(Session::Clock::time_point a, Session::Clock::time_point b) {
 
 std::string size_text(uint32_t w, uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); }
 
+std::string seconds_text(double s) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f s", s);
+  return text;
+}
+
+// The method that renders a progressive start's frames until the session's own is compiled: its
+// pipelines compile in about a second on lavapipe.
+constexpr const char* k_stand_in = "pt";
+
 void set_time(google::protobuf::Timestamp* t, std::chrono::system_clock::time_point tp) {
   const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(tp.time_since_epoch()).count();
   t->set_seconds(ns / 1'000'000'000);
@@ -27,7 +38,7 @@ void set_time(google::protobuf::Timestamp* t, std::chrono::system_clock::time_po
 }  // namespace
 
 Session::Session(std::string name, std::shared_ptr<const scene::Scene> scene, SessionSpec spec, const gpu::Context& ctx,
-                 ServiceMetrics& metrics)
+                 ServiceMetrics& metrics, WarmUp* progressive)
     : name_(std::move(name)),
       scene_(std::move(scene)),
       ctx_(ctx),
@@ -35,6 +46,7 @@ Session::Session(std::string name, std::shared_ptr<const scene::Scene> scene, Se
       analysis_(analyze_scene(*scene_)),
       created_steady_(Clock::now()),
       created_(std::chrono::system_clock::now()),
+      progressive_(progressive),
       spec_(std::move(spec)) {
   settings_ = render_settings(spec_);
   {
@@ -45,7 +57,19 @@ Session::Session(std::string name, std::shared_ptr<const scene::Scene> scene, Se
   idle_since_ = created_steady_;
   std::lock_guard lock(render_mu_);
   // `method auto` renders its first frames with its calibration's own runs.
-  if (!spec_.auto_method) create_renderer_locked();
+  if (spec_.auto_method) return;
+  if (progressive_ && settings_.method != k_stand_in && !progressive_->compiled(*scene_, settings_)) {
+    // The stand-in first: a pipeline both share is then not waited for behind the compile.
+    render::RenderSettings stand_in = settings_;
+    stand_in.method = k_stand_in;
+    stand_in_ = std::make_unique<render::Renderer>(ctx_, *scene_, stand_in);
+    submit_compile_locked();
+    std::printf("stratad: %s: the pipelines of %s compile in the background; %s renders its frames until then\n",
+                name_.c_str(), settings_.method.c_str(), k_stand_in);
+    std::fflush(stdout);
+    return;
+  }
+  create_renderer_locked();
 }
 
 Session::~Session() = default;
@@ -59,11 +83,31 @@ void Session::create_renderer_locked() {
   released_ = false;
 }
 
+void Session::submit_compile_locked() {
+  compile_ = progressive_->compile(scene_, settings_, name_);
+}
+
+bool Session::compiling_locked(uint64_t index, std::string& reason) {
+  if (!compile_) return false;
+  if (!compile_->done()) return true;
+  if (stand_in_ || !renderer_) {
+    stand_in_.reset();
+    reason += (reason.empty() ? "" : "; ") + settings_.method + "'s pipelines are compiled (" +
+              std::to_string(compile_->pipelines()) + " in " + seconds_text(compile_->seconds()) + "): it renders from this frame on, its history starting here";
+    std::printf("stratad: %s: %s renders from frame %llu on (its pipelines compiled in %s)\n", name_.c_str(), settings_.method.c_str(),
+                static_cast<unsigned long long>(index), seconds_text(compile_->seconds()).c_str());
+    std::fflush(stdout);
+  }
+  compile_.reset();
+  return false;
+}
+
 void Session::release_gpu() {
   std::lock_guard rl(render_mu_);
   std::lock_guard lock(mu_);
   if (attached_) return;  // a new stream came first: its frames use the GPU state
   renderer_.reset();
+  stand_in_.reset();
   calibration_.reset();  // `method auto` calibrates again from the next frame
   memory_.clear();
   released_ = true;
@@ -182,6 +226,8 @@ void Session::apply_locked(const PendingInput& input, std::string& reset_reason,
   if (!changes.empty()) {
     settings_ = next;
     renderer_.reset();
+    stand_in_.reset();
+    if (compile_) submit_compile_locked();  // the pipelines of the new settings (the variants may differ)
     reset_reason += (reset_reason.empty() ? "" : "; ") + changes + " (the GPU state is re-created)";
     if (spec_.auto_method && recalibrate.empty()) {
       if (resized) recalibrate = "the resolution changed";
@@ -229,13 +275,30 @@ RenderedFrame Session::render(PendingInput input) {
     std::lock_guard lock(mu_);
     calibrating = spec_.auto_method && !(auto_choice_ && auto_choice_->method);
   }
-  if (!calibrating && !renderer_) create_renderer_locked();
+  const bool compiling = !calibrating && compiling_locked(index, reason);
+  if (compiling && !stand_in_) {
+    render::RenderSettings stand_in = settings_;
+    stand_in.method = k_stand_in;
+    stand_in_ = std::make_unique<render::Renderer>(ctx_, *scene_, stand_in);
+  }
+  if (!calibrating && !compiling && !renderer_) create_renderer_locked();
   // Motion blur (RS-main 4.4): the shutter opens on the way from the camera of the frame rendered
   // before; the session's first frame has none and is an instant.
   frame_state_.camera_open = last_camera_ ? scene::shutter_open_camera(*last_camera_, frame_state_.camera) : std::nullopt;
 
   RenderedFrame f;
-  f.result = calibrating ? render_calibrating_locked(index, option_changes) : renderer_->render(frame_state_, uint32_t(index));
+  f.result = calibrating  ? render_calibrating_locked(index, option_changes)
+             : compiling ? stand_in_->render(frame_state_, uint32_t(index))
+                         : renderer_->render(frame_state_, uint32_t(index));
+  if (compiling) {
+    const size_t n = compile_->pipelines();
+    f.result.stats.passes.insert(
+        f.result.stats.passes.begin(),
+        {settings_.method, false,
+         settings_.method + " compiling: rendered by " + k_stand_in + " (" + (n ? std::to_string(n) + " pipelines" : std::string("its pipelines")) +
+             " compiling in the background for " + seconds_text(compile_->seconds()) + "; " + settings_.method +
+             " renders from the frame after they are compiled, its history starting there)"});
+  }
   last_camera_ = frame_state_.camera;
   const auto done = Clock::now();
   f.frame_index = index;
@@ -257,11 +320,11 @@ RenderedFrame Session::render(PendingInput input) {
   }
   // The domain map is read back only for frames that carry it (a few MB at 256 x 256 x 3 layers).
   if (std::find(f.encodings.begin(), f.encodings.end(), v1::IMAGE_ENCODING_DOMAIN_MAP) != f.encodings.end())
-    f.result.domain_map = renderer_->domain_map();
+    f.result.domain_map = (compiling ? stand_in_ : renderer_)->domain_map();
   metrics_.frames_rendered.fetch_add(1);
   metrics_.inputs_coalesced.fetch_add(input.coalesced);
   f.held = GaugeHold(metrics_.buffered_frame_bytes, int64_t(f.result.image.rgba.size() * sizeof(float)));
-  metrics_.frame_observers.notify({name_, scene_->name, settings_.method, f});
+  metrics_.frame_observers.notify({name_, scene_->name, compiling ? stand_in_->settings().method : settings_.method, f});
   return f;
 }
 

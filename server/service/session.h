@@ -2,6 +2,14 @@
 // A session (sessions/{session}): its scene, method and options, the frame state that inputs
 // change, and the Renderer holding its GPU state. The Renderer is created with the session,
 // released when a stream ends, and re-created (history reset) by the next frame.
+//
+// Progressive start (`stratad serve`; a Session given a compiler): a session whose method is not pt
+// and not auto, and whose pipelines are not listed as compiled in Mesa's cache, submits its renderer's exact pipelines to the compiler at creation, and until they
+// are compiled its frames are rendered by pt at the same settings (lavapipe compiles pt's in about
+// a second, restir-gather's in about a minute and a half of CPU). Each such frame says so in its
+// pass decisions (a first entry named after the method, ran = false); the frame after the compile
+// ends renders the method, with a history reset whose reason says why (its history starts there).
+// Without a compiler (tests, `stratad render`, eval) every frame is the method's.
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -23,6 +31,7 @@
 #include "service/method_auto.h"
 #include "service/options.h"
 #include "service/session_spec.h"
+#include "service/warm_up.h"
 #include "strata/v1/render.pb.h"
 
 namespace strata::service {
@@ -60,8 +69,9 @@ class Session {
  public:
   using Clock = std::chrono::steady_clock;
 
+  // `progressive`: the compiler of a progressive start (null: none).
   Session(std::string name, std::shared_ptr<const scene::Scene> scene, SessionSpec spec, const gpu::Context& ctx,
-          ServiceMetrics& metrics);
+          ServiceMetrics& metrics, WarmUp* progressive = nullptr);
   ~Session();
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
@@ -98,6 +108,11 @@ class Session {
 
  private:
   void create_renderer_locked();  // render_mu_ held
+  // Progressive start (render_mu_ held): submits the compile of settings_'s pipelines.
+  void submit_compile_locked();
+  // Progressive start (render_mu_ held): whether frames are still rendered by pt; the frame after
+  // the compile ended adds to `reason` that the method takes over.
+  bool compiling_locked(uint64_t index, std::string& reason);
   void apply_locked(const PendingInput& input, std::string& reset_reason, std::vector<v1::Decision>& option_changes);
   // `method auto` (render_mu_ held): drops the choice so that the next frame calibrates again.
   void recalibrate_locked(const std::string& why);
@@ -126,6 +141,11 @@ class Session {
   render::RenderSettings settings_;
   // `method auto`: the calibration in progress, if any (none once it has chosen).
   std::unique_ptr<AutoCalibration> calibration_;
+  // Progressive start: the compiler, the compile of the method's pipelines while it runs, and the
+  // pt renderer of the frames meanwhile.
+  WarmUp* const progressive_;
+  std::shared_ptr<const PipelineCompile> compile_;
+  std::unique_ptr<render::Renderer> stand_in_;
 
   // Description and counters: guarded by mu_ (taken after render_mu_ when both are needed).
   mutable std::mutex mu_;

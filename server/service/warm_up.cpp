@@ -1,14 +1,13 @@
 #include "service/warm_up.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
+#include "gpu/compiled_pipelines.h"
 #include "gpu/pipeline_warmup.h"
 #include "render/method_table.h"
-#include "render/renderer.h"
 #include "service/options.h"
 #include "service/scene_source.h"
 #include "service/session_spec.h"
@@ -16,7 +15,7 @@
 namespace strata::service {
 namespace {
 
-constexpr uint32_t k_size = 16;  // pixels a side of the renderers whose pipelines are recorded
+constexpr uint32_t k_size = 16;  // pixels a side of the renderers whose pipelines the start-time warm-up records
 
 // The settings a session of `method` at the default options has (as Session builds them).
 render::RenderSettings default_settings(const std::string& method, const ServiceLimits& limits) {
@@ -28,7 +27,13 @@ render::RenderSettings default_settings(const std::string& method, const Service
   return render_settings(check_create_session(req, limits));
 }
 
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
 }  // namespace
+
+double PipelineCompile::seconds() const { return done() ? seconds_.load() : seconds_since(submitted_); }
 
 std::vector<std::string> parse_warm_up(const std::string& list) {
   if (list == "none" || list.empty()) return {};
@@ -45,47 +50,109 @@ std::vector<std::string> parse_warm_up(const std::string& list) {
   return out;
 }
 
-WarmUp::WarmUp(gpu::ContextOptions device, const ServiceConfig& config, std::vector<std::string> methods, unsigned threads)
-    : device_(std::move(device)), methods_(std::move(methods)), threads_(std::max(1u, threads)) {
-  if (methods_.empty()) return;
-  gpu::warmup_begin();  // /readyz says so from now on
-  thread_ = std::thread([this, config] {
-    run(config);
-    gpu::warmup_end();
-  });
+WarmUp::WarmUp(gpu::ContextOptions device, const ServiceConfig& config, std::vector<std::string> methods, unsigned threads,
+               const gpu::Context* service)
+    : device_(std::move(device)), threads_(std::max(1u, threads)), service_(service) {
+  if (!methods.empty()) {
+    v1::SceneSource source;
+    source.set_builtin("carousel");
+    const std::shared_ptr<const scene::Scene> carousel = load_scene_source(source, config);
+    for (const auto& method : methods) jobs_.push_back({carousel, default_settings(method, config.limits), method, nullptr});
+    start_jobs_ = int(jobs_.size());
+    gpu::warmup_begin();  // /readyz says so from now on
+  }
+  thread_ = std::thread([this] { run(); });
 }
 
 WarmUp::~WarmUp() {
-  stop_ = true;
-  if (thread_.joinable()) thread_.join();
+  {
+    std::lock_guard lock(mu_);
+    stop_ = true;
+  }
+  cv_.notify_all();
+  thread_.join();
+  // Jobs never started: their sessions compile at the first dispatch instead.
+  for (const auto& job : jobs_)
+    if (job.state) job.state->done_ = true;
+  if (start_jobs_ > 0) gpu::warmup_end();
 }
 
-void WarmUp::run(const ServiceConfig& config) {
-  const auto start = std::chrono::steady_clock::now();
-  size_t total = 0;
+std::shared_ptr<const PipelineCompile> WarmUp::compile(std::shared_ptr<const scene::Scene> scene, render::RenderSettings settings,
+                                                       std::string label) {
+  auto state = std::shared_ptr<PipelineCompile>(new PipelineCompile(settings.method));
+  {
+    std::lock_guard lock(mu_);
+    jobs_.push_back({std::move(scene), std::move(settings), std::move(label), state});
+  }
+  cv_.notify_all();
+  return state;
+}
+
+bool WarmUp::compiled(const scene::Scene& scene, const render::RenderSettings& settings) const {
   try {
-    v1::SceneSource source;
-    source.set_builtin("carousel");
-    const auto scene = load_scene_source(source, config);
-    for (const auto& method : methods_) {
+    gpu::Context recorder(device_);  // thrown away: its pipelines are layouts only
+    const auto pipelines = gpu::record_pipelines([&] { render::Renderer renderer(recorder, scene, settings); });
+    return gpu::all_compiled(pipelines, recorder.device_name());
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+void WarmUp::run() {
+  for (;;) {
+    Job job;
+    {
+      std::unique_lock lock(mu_);
+      cv_.wait(lock, [&] { return stop_.load() || !jobs_.empty(); });
       if (stop_.load()) return;
-      std::vector<gpu::PipelineInfo> pipelines;
-      {
-        gpu::Context recorder(device_);  // thrown away: its pipelines are layouts only
-        const auto settings = default_settings(method, config.limits);
-        pipelines = gpu::record_pipelines([&] { render::Renderer renderer(recorder, *scene, settings); });
+      job = std::move(jobs_.front());
+      jobs_.pop_front();
+    }
+    run_job(job);
+    if (job.state) {
+      job.state->seconds_ = seconds_since(job.state->submitted_);
+      job.state->done_ = true;
+    } else {
+      std::lock_guard lock(mu_);
+      if (--start_jobs_ == 0) gpu::warmup_end();
+    }
+  }
+}
+
+void WarmUp::run_job(const Job& job) {
+  const std::string& method = job.settings.method;
+  try {
+    std::vector<gpu::PipelineInfo> pipelines;
+    std::string device_name;
+    {
+      gpu::Context recorder(device_);  // thrown away: its pipelines are layouts only
+      pipelines = gpu::record_pipelines([&] { render::Renderer renderer(recorder, *job.scene, job.settings); });
+      device_name = recorder.device_name();
+    }
+    if (job.state) job.state->pipelines_ = pipelines.size();
+    const double seconds = gpu::warm_pipelines(device_, pipelines, threads_, stop_, /*readiness=*/!job.state);
+    // The service's device keeps them in its pipeline table (gpu::Context::cached_pipeline).
+    if (job.state && service_)
+      for (const auto& p : pipelines) {
+        if (stop_.load()) break;
+        gpu::ComputePipeline(*service_, p.shader, p.bindings, p.spec, p.push_constant_bytes);
       }
-      const double seconds = gpu::warm_pipelines(device_, pipelines, threads_, stop_);
-      total += pipelines.size();
+    if (!stop_.load()) gpu::note_compiled(pipelines, device_name);
+    if (stop_.load()) {
+      std::printf("stratad: %s: compiling the pipelines of %s stopped after %.1f s: the service stops\n", job.label.c_str(),
+                  method.c_str(), seconds);
+    } else if (job.state) {
+      std::printf("stratad: %s: the pipelines of %s compiled: %zu in %.1f s on %u threads (%.1f s since it was created)\n",
+                  job.label.c_str(), method.c_str(), pipelines.size(), seconds, threads_, job.state->seconds());
+    } else {
       std::printf("stratad: pipelines of %s warm: %zu in %.1f s on %u threads (%.1f s since start)\n", method.c_str(),
-                  pipelines.size(), seconds, threads_,
-                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-      std::fflush(stdout);
+                  pipelines.size(), seconds, threads_, seconds_since(start_));
     }
   } catch (const std::exception& e) {
-    std::printf("stratad: pipeline warm-up stopped: %s (first frames compile their pipelines instead)\n", e.what());
-    std::fflush(stdout);
+    std::printf("stratad: %s: compiling the pipelines of %s stopped: %s (its frames compile them at their first dispatch)\n",
+                job.label.c_str(), method.c_str(), e.what());
   }
+  std::fflush(stdout);
 }
 
 }  // namespace strata::service

@@ -1,34 +1,96 @@
 #pragma once
-// `stratad serve --warm-up METHODS`: the pipelines of the methods named are compiled at start, in parallel
-// (gpu/pipeline_warmup.h), so that a session's first frame does not wait for lavapipe to compile
-// them one after another. Which pipelines: those a renderer of each method creates for the
-// built-in carousel at the default options. Progress shows on /readyz (503 while warming) and as
-// log lines.
+// Compiling a method's pipelines before a frame dispatches them (gpu/pipeline_warmup.h: lavapipe
+// compiles at the first dispatch, one pipeline after another on the device's queue thread), on a
+// thread of its own, one job after another, each job on `threads` devices in parallel:
+// - `stratad serve --warm-up METHODS`: at start, the pipelines a renderer of each method creates for
+//   the built-in carousel at the default options. /readyz answers 503 meanwhile; log lines.
+// - The progressive start of a session (`stratad serve`, on by default; service/session.h): the
+//   pipelines of the session's own renderer, recorded from its own settings, so that the variants
+//   compiled (specialization constants, bindings) are exactly those its frames dispatch and each is
+//   compiled once. /readyz is not affected; frames and a log line say it.
+// Code compiled here lands in Mesa's disk cache, where the service's device finds it, and is listed
+// as compiled (gpu/compiled_pipelines.h): a session whose pipelines are all listed starts with its
+// method at once, as its first frame only loads their code. A session's
+// job then also creates the pipelines on the service's device (vkCreateComputePipelines: lavapipe
+// translates and optimises the SPIR-V there, about 2 s of CPU for restir-gather's), so that the
+// frame that takes over finds them in the device's pipeline table and only loads the code.
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "gpu/context.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
 #include "service/config.h"
 
 namespace strata::service {
+
+// A session's compile job as the session sees it.
+class PipelineCompile {
+ public:
+  bool done() const { return done_.load(); }
+  // The pipelines recorded (0 until recorded), and the seconds from submission to done (or so far).
+  size_t pipelines() const { return pipelines_.load(); }
+  double seconds() const;
+  const std::string& method() const { return method_; }
+
+ private:
+  friend class WarmUp;
+  explicit PipelineCompile(std::string method) : method_(std::move(method)) {}
+  const std::string method_;
+  const std::chrono::steady_clock::time_point submitted_ = std::chrono::steady_clock::now();
+  std::atomic<bool> done_{false};
+  std::atomic<size_t> pipelines_{0};
+  std::atomic<double> seconds_{0.0};
+};
 
 class WarmUp {
  public:
   // Starts at once on a thread of its own; `methods` in the order to warm them (unknown names are
   // an std::invalid_argument naming --warm-up); `threads` devices compile in parallel.
-  WarmUp(gpu::ContextOptions device, const ServiceConfig& config, std::vector<std::string> methods, unsigned threads);
+  // `service`: the service's device, on which a session's job creates its pipelines after compiling
+  // them (null: none).
+  WarmUp(gpu::ContextOptions device, const ServiceConfig& config, std::vector<std::string> methods, unsigned threads,
+         const gpu::Context* service = nullptr);
   ~WarmUp();  // stops after the pipelines being compiled
   WarmUp(const WarmUp&) = delete;
   WarmUp& operator=(const WarmUp&) = delete;
 
+  // Whether the pipelines a renderer with `settings` creates for `scene` were compiled into Mesa's
+  // disk cache before (gpu/compiled_pipelines.h): then its first frame only loads them. Records
+  // them on a device of its own (a few hundred ms); false when that fails.
+  bool compiled(const scene::Scene& scene, const render::RenderSettings& settings) const;
+
+  // Compiles the pipelines a renderer with `settings` creates for `scene`, after the jobs queued
+  // before it; `label` names it in the log line. A job that fails marks itself done (the renderer
+  // then compiles at its first dispatch, as without it).
+  std::shared_ptr<const PipelineCompile> compile(std::shared_ptr<const scene::Scene> scene, render::RenderSettings settings,
+                                                 std::string label);
+
  private:
-  void run(const ServiceConfig& config);
+  struct Job {
+    std::shared_ptr<const scene::Scene> scene;
+    render::RenderSettings settings;
+    std::string label;
+    std::shared_ptr<PipelineCompile> state;  // null for the start-time warm-up
+  };
+  void run();
+  void run_job(const Job& job);
   const gpu::ContextOptions device_;
-  const std::vector<std::string> methods_;
   const unsigned threads_;
+  const gpu::Context* const service_;
+  const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   std::atomic<bool> stop_{false};
+  std::mutex mu_;
+  std::condition_variable cv_;
+  std::deque<Job> jobs_;
+  int start_jobs_ = 0;  // start-time jobs not yet done (/readyz is 503 while any is left)
   std::thread thread_;
 };
 

@@ -3,9 +3,14 @@
 // and 200 after, a log line counts them, Mesa's cache fills), and a session's first frame then
 // finds them compiled: it renders in a fraction of the compile time. GALLIVM_PERF=nopt (llvmpipe
 // without LLVM's optimisation passes) keeps the compile, and so the test, about twice as short.
+//
+// The progressive start on a cold machine: a session's first frames are rendered by pt while its
+// method's pipelines compile in the background, each frame saying so, and the frame after the
+// compile is the method's, with a history reset that says why.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <optional>
 
 #include "harness.h"
 #include "ops_util.h"
@@ -50,6 +55,57 @@ TEST(WarmUpTest, ColdCachePipelinesCompileAtStartNotInTheFirstFrame) {
   EXPECT_LT(frames[0].timing().render_ms(), 0.1 * warm_s * 1000.0)
       << "the first frame took " << frames[0].timing().render_ms() << " ms after a " << warm_s << " s warm-up";
   std::printf("warm-up %.1f s; first restir-gather frame at 16x16 %.0f ms\n", warm_s, frames[0].timing().render_ms());
+}
+
+TEST(WarmUpTest, ColdCacheProgressiveStartRendersPtUntilTheMethodIsCompiled) {
+  TempDir cache;
+  ::setenv("MESA_SHADER_CACHE_DIR", cache.path.c_str(), 1);
+  ::setenv("GALLIVM_PERF", "nopt", 1);
+  OpsDaemon daemon({"--progressive-start"});
+  ::unsetenv("MESA_SHADER_CACHE_DIR");
+  ::unsetenv("GALLIVM_PERF");
+  auto stub = v1::RenderService::NewStub(loopback_channel(daemon.address()));
+  // restir-di: the progressive start is the same for every method, and its pipelines compile in a
+  // fraction of restir-gather's time.
+  auto req = session_request("carousel", 16, 16);
+  req.set_method("restir-di");
+  const v1::Session s = create_ok(*stub, req);
+
+  auto compiling = [](const v1::Frame& f) {
+    const auto& passes = f.statistics().passes();
+    return !passes.empty() && passes[0].pass() == "restir-di" && !passes[0].ran();
+  };
+  StreamClient stream(*stub);
+  auto next_frame = [&, i = uint32_t(0)]() mutable -> std::optional<v1::Frame> {
+    if (!stream.send(frame_input(i + 1, i == 0 ? s.name() : "", i))) return std::nullopt;
+    ++i;
+    return stream.read();
+  };
+  const auto first = next_frame();
+  ASSERT_TRUE(first) << daemon.process().output();
+  ASSERT_TRUE(compiling(*first)) << "the first frame was not pt's: " << daemon.process().output();
+  EXPECT_NE(first->statistics().passes(0).reason().find("restir-di compiling: rendered by pt"), std::string::npos)
+      << first->statistics().passes(0).reason();
+  EXPECT_FALSE(first->statistics().has_reuse()) << "pt keeps no reservoirs";
+  EXPECT_NE(daemon.process().output().find("the pipelines of restir-di compile in the background; pt renders its frames"),
+            std::string::npos)
+      << daemon.process().output();
+
+  // No frames meanwhile: the compile has both cores.
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_TRUE(wait_until([&] { return daemon.process().output().find("the pipelines of restir-di compiled: ") != std::string::npos; },
+                         170s))
+      << "restir-di was not compiled within 170 s: " << daemon.process().output();
+  const double compile_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto taken_over = next_frame();
+  ASSERT_TRUE(taken_over) << daemon.process().output();
+  EXPECT_FALSE(compiling(*taken_over));
+  EXPECT_TRUE(taken_over->statistics().has_reuse()) << "the frame after the compile is restir-di's";
+  EXPECT_TRUE(taken_over->history_reset());
+  EXPECT_NE(taken_over->history_reset_reason().find("restir-di's pipelines are compiled"), std::string::npos)
+      << taken_over->history_reset_reason();
+  EXPECT_TRUE(stream.close().ok());
+  std::printf("progressive start: the first frame by pt, restir-di from the second, after %.1f s of compile\n", compile_s);
 }
 
 }  // namespace

@@ -131,7 +131,8 @@ TEST(SecureCliTest, StrataCommandsTakeTlsAndTokenFlags) {
   const std::string port_file = (dir.path / "port").string();
   Process daemon({stratad_path(), "serve", "--listen", "127.0.0.1:0", "--port-file", port_file, "--instance-id", "secure-1",
                   "--tls-cert", certs.server_cert.string(), "--tls-key", certs.server_key.string(), "--tls-client-ca",
-                  certs.ca.string(), "--auth-token-file", (dir.path / "token").string()});
+                  certs.ca.string(), "--auth-token-file", (dir.path / "token").string(),
+                  "--no-progressive-start"});
   std::string address;
   ASSERT_TRUE(wait_until([&] {
     std::ifstream in(port_file);

@@ -43,7 +43,8 @@ class Process {
   std::optional<int> status_;
 };
 
-// `stratad serve --listen 127.0.0.1:0` plus `args`, ready (health SERVING) when constructed.
+// `stratad serve --listen 127.0.0.1:0` plus `args`, ready (health SERVING) when constructed; with
+// --no-progressive-start unless `args` has --progressive-start.
 class Daemon {
  public:
   explicit Daemon(const std::vector<std::string>& args = {});
