@@ -69,25 +69,9 @@ glm::dvec3 irradiance(const scene::EnvironmentMap& m, glm::vec3 n) {
   return e;
 }
 
-// A white Lambert plane (albedo 1, no specular lobe) at z = 0 facing +Z, alone under the sky, seen
-// from (0, 0, 3) straight down through a narrow field of view.
+// The white plane of tests/support/test_scenes.h (facing +Z) alone under the sky.
 scene::Scene plane_under(const scene::EnvironmentMap& sky) {
-  scene::Scene s;
-  s.name = "sky-plane";
-  scene::Material white;
-  white.name = "white";
-  white.base_color = glm::vec3(1.0f);
-  white.specular = 0.0f;
-  s.materials.push_back(white);
-  scene::Mesh mesh = quad_mesh(10.0f, 0.0f, 0);
-  mesh.name = "plane";
-  s.meshes.push_back(mesh);
-  scene::Instance inst;
-  inst.name = "plane";
-  inst.lod_meshes = {0};
-  s.instances.push_back(inst);
-  s.camera.position = glm::vec3(0.0f, 0.0f, 3.0f);
-  s.camera.yfov = 0.004f;
+  scene::Scene s = white_plane("sky-plane");
   s.environment.map = sky;
   s.validate();
   return s;

@@ -35,27 +35,10 @@ scene::Light make_light(scene::LightType type, float intensity, glm::vec3 positi
   return l;
 }
 
-// A white Lambert plane (albedo 1: base colour 1, no specular lobe) at z = 0 facing +Z, seen by a
-// camera at (0, 0, 3) looking down -Z through a 0.004 rad field of view (the pixels see points
-// within 6 mm of the origin), lit by `light` alone.
+// The white plane of tests/support/test_scenes.h lit by `light` alone.
 scene::Scene lit_plane(const scene::Light& light) {
-  scene::Scene s;
-  s.name = "lit-plane";
-  scene::Material white;
-  white.name = "white";
-  white.base_color = glm::vec3(1.0f);
-  white.specular = 0.0f;
-  s.materials.push_back(white);
-  scene::Mesh m = quad_mesh(10.0f, 0.0f, 0);
-  m.name = "plane";
-  s.meshes.push_back(m);
-  scene::Instance inst;
-  inst.name = "plane";
-  inst.lod_meshes = {0};
-  s.instances.push_back(inst);
+  scene::Scene s = white_plane("lit-plane");
   s.lights.push_back(light);
-  s.camera.position = glm::vec3(0.0f, 0.0f, 3.0f);
-  s.camera.yfov = 0.004f;
   s.validate();
   return s;
 }

@@ -116,4 +116,24 @@ scene::FrameState lod_switched(const scene::Scene& s, uint32_t scene_frame, uint
   return st;
 }
 
+scene::Scene white_plane(const std::string& name) {
+  scene::Scene s;
+  s.name = name;
+  scene::Material white;
+  white.name = "white";
+  white.base_color = glm::vec3(1.0f);
+  white.specular = 0.0f;
+  s.materials.push_back(white);
+  scene::Mesh m = quad_mesh(10.0f, 0.0f, 0);
+  m.name = "plane";
+  s.meshes.push_back(m);
+  scene::Instance inst;
+  inst.name = "plane";
+  inst.lod_meshes = {0};
+  s.instances.push_back(inst);
+  s.camera.position = glm::vec3(0.0f, 0.0f, 3.0f);
+  s.camera.yfov = 0.004f;
+  return s;
+}
+
 }  // namespace strata::test

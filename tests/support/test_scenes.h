@@ -28,6 +28,11 @@ scene::FrameState lod_switched(const scene::Scene& s, uint32_t scene_frame, uint
 // One quad of size 2h x 2h in the plane z = z0, facing +Z, with one material.
 scene::Mesh quad_mesh(float half, float z0, uint32_t material);
 
+// A white Lambert plane (albedo 1: base colour 1, no specular lobe), 20 m across at z = 0 facing +Z,
+// seen by a camera at (0, 0, 3) looking down -Z through a 0.004 rad field of view (the pixels see
+// points within 6 mm of the origin). Nothing lights it: tests add the light they check.
+scene::Scene white_plane(const std::string& name);
+
 // Two planes facing a camera at (0, 0, 4) that looks down -Z: the back plane (instance "back",
 // z = 0, 2 m half size, grey Lambert) and the front quad (instance "front", z = 1, half size
 // `front_half`, orange Lambert), lit by a one-sided emitter between them off to the side
