@@ -20,7 +20,7 @@ float env_select_prob(bool env_nee, const GpuScene& scene, double total_power) {
 }  // namespace
 
 bool environment_nee(const scene::Environment& env, bool scene_has_emitters) {
-  if (SceneEnvironment::needed(env)) return true;
+  if (env.map) return SceneEnvironment::needed(env);  // a black map replaces the constant colour too
   return !scene_has_emitters && glm::any(glm::greaterThan(env.radiance, glm::vec3(0.0f)));
 }
 
@@ -62,7 +62,8 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   gpu::GpuFrameConstants c{};
   c.camera = make_camera(frame.camera, setup.width, setup.height);
   c.shutter = make_shutter(frame);
-  c.environment = glm::vec4(scene.has_environment_map() ? glm::vec3(0.0f) : env.radiance, setup.env_nee ? 1.0f : 0.0f);
+  // A map replaces the constant colour (a black one too: the constant is then 0).
+  c.environment = glm::vec4(env.map ? glm::vec3(0.0f) : env.radiance, setup.env_nee ? 1.0f : 0.0f);
   c.width = setup.width;
   c.height = setup.height;
   c.frame_index = setup.frame_index;
