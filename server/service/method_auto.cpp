@@ -105,7 +105,7 @@ std::string auto_method_reason(const AutoChoice& c) {
          " has the lower error at equal GPU time, " + other +
          " was left). Each candidate rendered each frame twice with independent random streams; its RelMSE is "
          "estimated from the two runs' differences against their 3x3-median mean. Calibrated again when the "
-         "resolution changes or an instance that emits light moves";
+         "resolution changes, an instance that emits light moves or a punctual light moves";
 }
 
 std::string auto_cap_reason(const AutoChoice& c) {
