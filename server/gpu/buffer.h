@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "gpu/context.h"
 
 namespace strata::gpu {
@@ -53,6 +55,9 @@ class Buffer {
   void* mapped_ = nullptr;
   std::string name_;
 };
+
+// A device address as the two 32-bit words a shader's uvec2 buffer reference takes (low, high).
+inline glm::uvec2 address_words(VkDeviceAddress a) { return glm::uvec2(uint32_t(a), uint32_t(a >> 32)); }
 
 // Usage for buffers that shaders read or write.
 constexpr VkBufferUsageFlags k_storage_usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |

@@ -76,11 +76,10 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   c.total_emitter_power = float(scene.total_emitter_power());
   c.env_select_prob = env_select_prob(setup.env_nee, scene, scene.total_emitter_power());
   c.light_count = scene.light_count();
-  const auto address = [](VkDeviceAddress a) { return glm::uvec2(uint32_t(a), uint32_t(a >> 32)); };
-  c.lights = address(scene.lights_address(scene.parity()));
+  c.lights = gpu::address_words(scene.lights_address(scene.parity()));
   // With history the other slot holds the previous frame's records; without, this frame's stand in.
-  c.prev_lights = address(scene.lights_address(scene.keeps_history() ? 1 - scene.parity() : scene.parity()));
-  c.environment_map = address(scene.environment_map_address());
+  c.prev_lights = gpu::address_words(scene.lights_address(scene.keeps_history() ? 1 - scene.parity() : scene.parity()));
+  c.environment_map = gpu::address_words(scene.environment_map_address());
 
   // The previous frame (docs/ARCHITECTURE.md, State, session state): the one the scene's previous slot
   // holds, at the same resolution (a session's image size is fixed). After the first update that

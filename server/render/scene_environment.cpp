@@ -9,8 +9,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-glm::uvec2 split(VkDeviceAddress a) { return glm::uvec2(uint32_t(a), uint32_t(a >> 32)); }
-
 }  // namespace
 
 SceneEnvironment::SceneEnvironment(const gpu::Context& ctx, const scene::EnvironmentMap& map) {
@@ -20,9 +18,9 @@ SceneEnvironment::SceneEnvironment(const gpu::Context& ctx, const scene::Environ
   conditional_ = gpu::make_buffer<float>(ctx, map.conditional_cdf, gpu::k_storage_usage, gpu::Memory::Device, "environment cdf");
   marginal_ = gpu::make_buffer<float>(ctx, map.marginal_cdf, gpu::k_storage_usage, gpu::Memory::Device, "environment cdf");
   gpu::GpuEnvironmentMap r{};
-  r.radiance = split(radiance_.address());
-  r.conditional = split(conditional_.address());
-  r.marginal = split(marginal_.address());
+  r.radiance = gpu::address_words(radiance_.address());
+  r.conditional = gpu::address_words(conditional_.address());
+  r.marginal = gpu::address_words(marginal_.address());
   r.width = map.width;
   r.height = map.height;
   r.rotation_cos = std::cos(map.rotation);

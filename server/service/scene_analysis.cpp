@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/scene_environment.h"
 #include "scene/unrendered.h"
 
 namespace strata::service {
@@ -67,8 +68,8 @@ v1::SceneAnalysis analyze_scene(const scene::Scene& s) {
   }
   a.set_emissive_triangles(emissive);
   const auto& env = s.environment.radiance;
-  const bool map_lights = s.environment.map && s.environment.map->weight_sum > 0.0 && s.environment.map->intensity > 0.0f;
-  a.set_environment_light(s.environment.map ? map_lights : (env.r > 0.0f || env.g > 0.0f || env.b > 0.0f));
+  a.set_environment_light(s.environment.map ? render::SceneEnvironment::needed(s.environment)
+                                            : (env.r > 0.0f || env.g > 0.0f || env.b > 0.0f));
   if (s.environment.map)
     a.set_environment_map(s.environment.map->name + " (" + std::to_string(s.environment.map->width) + " x " +
                           std::to_string(s.environment.map->height) + " texels)");
