@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <numbers>
 #include <numeric>
 
 #include "render/scene_textures.h"
@@ -81,7 +82,9 @@ EmitterTable build_emitter_table(const scene::Scene& scene, const scene::FrameSt
   }
   for (size_t l = 0; l < scene.lights.size(); ++l) {
     t.lights.push_back(punctual_record(scene.lights[l], frame.lights.at(l), origin));
-    const double w = punctual_power(scene.lights[l], scene_radius);
+    // The table's unit is power / pi: a diffuse triangle's weight above, L A sides, is its power
+    // pi L A sides over pi (the unit sampling/emitter_pdf.h divides by on the device).
+    const double w = punctual_power(scene.lights[l], scene_radius) / std::numbers::pi;
     power.push_back(w);
     t.total_power += w;
   }

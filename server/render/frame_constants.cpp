@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include <cmath>
+#include <numbers>
 
 namespace strata::render {
 namespace {
@@ -13,7 +14,7 @@ namespace {
 float env_select_prob(bool env_nee, const GpuScene& scene, double total_power) {
   if (!env_nee) return 0.0f;
   if (!scene.has_environment_map()) return 1.0f;
-  const double env = scene.environment_power();
+  const double env = scene.environment_power() / std::numbers::pi;  // in the light table's unit, power / pi
   return total_power > 0.0 ? float(env / (env + total_power)) : 1.0f;
 }
 
