@@ -10,7 +10,9 @@ std::string dashboard_page() {
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>stratad dashboard</title>\n<link rel=\"icon\" href=\"data:,\">\n<style>\n";
   html += assets::uplot_css();
   html += assets::dashboard_css();
-  html += "</style>\n</head>\n<body>\n<header><h1>stratad</h1><span id=\"status\">connecting</span></header>\n"
+  html += "</style>\n</head>\n<body>\n<header><h1>stratad</h1><span id=\"status\">connecting</span>"
+          "<form id=\"token-form\" style=\"display:none\"><input id=\"token\" type=\"password\" autocomplete=\"off\" "
+          "placeholder=\"access token (--auth-token-file)\"><button>connect</button></form></header>\n"
           "<main id=\"sessions\"></main>\n<footer>Plots: uPlot ";
   html += assets::uplot_version();
   html += "</footer>\n<script>\n";

@@ -1,11 +1,13 @@
 #include "http/http_server.h"
 
+#include <map>
 #include <stdexcept>
 #include <vector>
 
 #include <CivetServer.h>
 
 #include "gpu/pipeline_warmup.h"
+#include "service/auth_token.h"
 #include "http/viewer_socket.h"
 #include "service/tls_credentials.h"
 
@@ -36,10 +38,29 @@ class PageHandler final : public CivetHandler {
   const std::string page_;
 };
 
+// The dashboard's event stream: every session's frames (statistics, thumbnails). With
+// --auth-token-file it needs `Authorization: Bearer <token>` (the page sends the token the viewer
+// keeps for the tab, asking once on a 401); the page itself holds no data and is served to anyone.
 class EventsHandler final : public CivetHandler {
  public:
-  explicit EventsHandler(std::shared_ptr<DashboardHub> hub) : hub_(std::move(hub)) {}
+  EventsHandler(std::shared_ptr<DashboardHub> hub, std::shared_ptr<const service::BearerToken> token)
+      : hub_(std::move(hub)), token_(std::move(token)) {}
   bool handleGet(CivetServer*, mg_connection* conn) override {
+    if (token_) {
+      const char* header = mg_get_header(conn, "Authorization");
+      const std::string value = header ? header : "";
+      std::multimap<grpc::string_ref, grpc::string_ref> metadata;
+      if (header) metadata.emplace("authorization", value);
+      if (const grpc::Status st = token_->check(metadata); !st.ok()) {
+        const std::string body = "/events: " + st.error_message() + "\n";
+        mg_printf(conn,
+                  "HTTP/1.1 401 Unauthorized\r\nWWW-Authenticate: Bearer\r\nContent-Type: text/plain\r\nContent-Length: %zu\r\n"
+                  "Cache-Control: no-store\r\nConnection: close\r\n\r\n",
+                  body.size());
+        send_all(conn, body);
+        return true;
+      }
+    }
     auto viewer = hub_->subscribe();
     if (!viewer) {
       respond(conn, 503, "Service Unavailable", "text/plain",
@@ -65,6 +86,7 @@ class EventsHandler final : public CivetHandler {
 
  private:
   std::shared_ptr<DashboardHub> hub_;
+  const std::shared_ptr<const service::BearerToken> token_;
 };
 
 class ProbeHandler final : public CivetHandler {
@@ -119,9 +141,9 @@ HttpServer::HttpServer(const std::string& listen, service::ServiceCore& core, st
   server_->addHandler("/dashboard", handlers_.back().get());
   handlers_.push_back(std::make_unique<PageHandler>(viewer_page()));
   server_->addHandler("/view", handlers_.back().get());
-  viewers_ = std::make_unique<ViewerSocketHandler>(core, std::move(token));
+  viewers_ = std::make_unique<ViewerSocketHandler>(core, token);
   server_->addWebSocketHandler("/view/ws", viewers_.get());
-  handlers_.push_back(std::make_unique<EventsHandler>(hub_));
+  handlers_.push_back(std::make_unique<EventsHandler>(hub_, std::move(token)));
   server_->addHandler("/events", handlers_.back().get());
   handlers_.push_back(std::make_unique<ProbeHandler>(core, false));
   server_->addHandler("/healthz", handlers_.back().get());

@@ -92,6 +92,39 @@ TEST(DashboardTest, ChromiumDrawsAndUpdatesTwoSessionsWithoutConsoleOutput) {
   EXPECT_TRUE(b.stop().ok());
 }
 
+// With --auth-token-file the event stream (every session's statistics and thumbnails) needs the
+// token, as the viewer's socket does; the page, which holds no data, does not. Chromium's page asks
+// for the token on the 401 and goes live with it.
+TEST(DashboardTest, TheEventStreamNeedsTheTokenWhereTheDaemonHasOne) {
+  ASSERT_EQ(::access(chromium_path().c_str(), X_OK), 0) << chromium_path() << " is not installed (deploy/install-deps.sh)";
+  TempDir dir;
+  const std::string token = "dashboard-test-token-0123456789";
+  write_text(dir.path / "token", token + "\n");
+  OpsDaemon daemon({"--http", "127.0.0.1:0", "--auth-token-file", (dir.path / "token").string()});
+  EXPECT_EQ(http_get(daemon.http_address(), "/dashboard").status, 200);
+  const HttpResponse none = http_get(daemon.http_address(), "/events", 3s);
+  EXPECT_EQ(none.status, 401) << none.headers;
+  EXPECT_NE(none.headers.find("WWW-Authenticate: Bearer"), std::string::npos) << none.headers;
+  EXPECT_NE(none.body.find("token"), std::string::npos) << none.body;
+  const HttpResponse wrong = http_get(daemon.http_address(), "/events", 3s, "Authorization: Bearer not-the-token-at-all\r\n");
+  EXPECT_EQ(wrong.status, 401) << wrong.headers;
+  EXPECT_EQ(wrong.body.find(token), std::string::npos);
+  const HttpResponse right = http_get(daemon.http_address(), "/events", 1500ms, "Authorization: Bearer " + token + "\r\n");
+  EXPECT_EQ(right.status, 200) << right.headers;
+  EXPECT_TRUE(right.body.starts_with("retry:")) << right.body;
+
+  Chromium browser(chromium_path(), dir.path, 800, 600);
+  browser.open("http://" + daemon.http_address() + "/dashboard");
+  auto text = [&](const std::string& js) { return browser.evaluate(js).get<std::string>(); };
+  const std::string form_shown = "document.getElementById('token-form') ? getComputedStyle(document.getElementById('token-form')).display : ''";
+  const std::string status = "document.getElementById('status') ? document.getElementById('status').textContent : ''";
+  // (a flex item: its computed display is block, not the inline the page sets)
+  EXPECT_TRUE(wait_until([&] { return text(form_shown) == "block"; }, 20s)) << text(status) << ", form display " << text(form_shown);
+  browser.evaluate("document.getElementById('token').value = '" + token + "', document.getElementById('token-form').requestSubmit(), true");
+  EXPECT_TRUE(wait_until([&] { return text(status) == "live"; }, 20s)) << text(status);
+  EXPECT_EQ(text(form_shown), "none");
+}
+
 TEST(DashboardTest, ASlowViewerDropsEventsInsteadOfQueueing) {
   http::DashboardHub hub;
   auto slow = hub.subscribe();

@@ -10,7 +10,8 @@
 
 namespace strata::test {
 
-HttpResponse http_get(const std::string& host_port, const std::string& path, std::chrono::milliseconds timeout) {
+HttpResponse http_get(const std::string& host_port, const std::string& path, std::chrono::milliseconds timeout,
+                      const std::string& headers) {
   HttpResponse r;
   const auto colon = host_port.rfind(':');
   if (colon == std::string::npos) return r;
@@ -24,7 +25,7 @@ HttpResponse http_get(const std::string& host_port, const std::string& path, std
     ::close(fd);
     return r;
   }
-  const std::string request = "GET " + path + " HTTP/1.0\r\nHost: " + host_port + "\r\n\r\n";
+  const std::string request = "GET " + path + " HTTP/1.0\r\nHost: " + host_port + "\r\n" + headers + "\r\n";
   if (::send(fd, request.data(), request.size(), MSG_NOSIGNAL) != ssize_t(request.size())) {
     ::close(fd);
     return r;

@@ -13,7 +13,9 @@ struct HttpResponse {
 };
 
 // GET http://host:port/path; everything read until the server closes or `timeout` passes.
-HttpResponse http_get(const std::string& host_port, const std::string& path, std::chrono::milliseconds timeout = std::chrono::seconds(10));
+// `headers`: more request header lines, each ending in \r\n.
+HttpResponse http_get(const std::string& host_port, const std::string& path, std::chrono::milliseconds timeout = std::chrono::seconds(10),
+                      const std::string& headers = "");
 
 // The "host:port" in the first line of `output` that contains `marker` followed by "http://host:port".
 std::string address_after(const std::string& output, const std::string& marker);

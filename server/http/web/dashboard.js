@@ -1,5 +1,5 @@
 // The live dashboard: one card per session, built from /events (one server-sent event per
-// rendered frame). Charts keep the last MAX_POINTS frames and redraw at most once per animation
+// rendered frame; with a token, sent as the viewer sends it). Charts keep the last MAX_POINTS frames and redraw at most once per animation
 // frame. <body> carries data-events, data-sessions, data-charts and data-redraws so that a
 // headless browser can tell that the charts drew and updated; the title gains " [live]" once
 // every card has drawn.
@@ -144,8 +144,53 @@
     if (charts > 0 && charts === sessions.size * 6 && !document.title.endsWith('[live]')) document.title += ' [live]';
   }
 
-  const source = new EventSource('/events');
-  source.onopen = () => { status.textContent = 'live'; };
-  source.onerror = () => { status.textContent = 'reconnecting'; };
-  source.onmessage = (m) => { onEvent(JSON.parse(m.data)); };
+  // The event stream, read with fetch so that it can carry the daemon's token: with
+  // --auth-token-file /events answers 401 without it, and the page asks for it once (kept for the
+  // tab under the viewer's key). Reconnects after 2 s as EventSource would.
+  const form = document.getElementById('token-form');
+  function parseEvents(text) {
+    let cut;
+    while ((cut = text.indexOf('\n\n')) >= 0) {
+      const data = text.slice(0, cut).split('\n').filter((l) => l.startsWith('data: ')).map((l) => l.slice(6)).join('\n');
+      text = text.slice(cut + 2);
+      if (data) onEvent(JSON.parse(data));
+    }
+    return text;
+  }
+  async function stream() {
+    for (;;) {
+      const token = sessionStorage.getItem('strata_token');
+      try {
+        const r = await fetch('/events', { cache: 'no-store', headers: token ? { Authorization: 'Bearer ' + token } : {} });
+        if (r.status === 401) {
+          sessionStorage.removeItem('strata_token');
+          status.textContent = 'this stratad needs its access token';
+          form.style.display = 'inline';
+          return;
+        }
+        if (r.ok && r.body) {
+          status.textContent = 'live';
+          const reader = r.body.pipeThrough(new TextDecoderStream()).getReader();
+          let pendingText = '';
+          for (;;) {
+            const { value, done } = await reader.read();
+            if (done) break;
+            pendingText = parseEvents(pendingText + value);
+          }
+        }
+      } catch (e) {
+        // the daemon went away: try again below
+      }
+      status.textContent = 'reconnecting';
+      await new Promise((resolve) => setTimeout(resolve, 2000));
+    }
+  }
+  form.addEventListener('submit', (e) => {
+    e.preventDefault();
+    sessionStorage.setItem('strata_token', document.getElementById('token').value);
+    form.style.display = 'none';
+    status.textContent = 'connecting';
+    stream();
+  });
+  stream();
 })();
