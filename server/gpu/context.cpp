@@ -90,10 +90,27 @@ Context::Context(const ContextOptions& options) {
 }
 
 std::shared_ptr<void> Context::cached_pipeline(const std::string& key, const std::function<std::shared_ptr<void>()>& make) const {
-  std::lock_guard lock(pipelines_mutex_);
-  auto& slot = pipelines_[key];
-  if (!slot) slot = make();
-  return slot;
+  // The table's lock is not held while a pipeline is made: other keys are made alongside it.
+  std::promise<std::shared_ptr<void>> made;
+  std::shared_future<std::shared_ptr<void>> slot;
+  bool maker = false;
+  {
+    std::lock_guard lock(pipelines_mutex_);
+    auto [it, first] = pipelines_.try_emplace(key);
+    if (first) it->second = made.get_future().share();
+    slot = it->second;
+    maker = first;
+  }
+  if (maker) {
+    try {
+      made.set_value(make());
+    } catch (...) {
+      made.set_exception(std::current_exception());  // this caller's and the waiters' error
+      std::lock_guard lock(pipelines_mutex_);
+      pipelines_.erase(key);  // a later caller tries again
+    }
+  }
+  return slot.get();
 }
 
 Context::~Context() {

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <future>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -71,11 +72,13 @@ class Context {
   // Compiled pipelines shared by every user of this context for its lifetime (gpu/pipeline.cpp):
   // a pipeline is compiled once per process, which matters where compiling is slow (lavapipe
   // compiles a ray-query shader with LLVM for seconds). Keyed by shader, layout and constants.
+  // Threads may create different pipelines at once (gpu::create_pipelines); a second caller of a
+  // key being made waits for that one.
   std::shared_ptr<void> cached_pipeline(const std::string& key, const std::function<std::shared_ptr<void>()>& make) const;
 
  private:
   mutable std::mutex pipelines_mutex_;
-  mutable std::map<std::string, std::shared_ptr<void>> pipelines_;
+  mutable std::map<std::string, std::shared_future<std::shared_ptr<void>>> pipelines_;
   static VkBool32 VKAPI_PTR debug_callback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                            VkDebugUtilsMessageTypeFlagsEXT types,
                                            const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);

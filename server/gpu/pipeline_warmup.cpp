@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <condition_variable>
+#include <exception>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -112,6 +113,36 @@ double warm_pipelines(const ContextOptions& options, const std::vector<PipelineI
     for (const auto& p : todo) s.keys.erase(p.key());
   }
   s.cv.notify_all();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double create_pipelines(const Context& ctx, const std::vector<PipelineInfo>& pipelines, unsigned threads) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<const PipelineInfo*> order;
+  for (const auto& p : pipelines) order.push_back(&p);
+  std::stable_sort(order.begin(), order.end(), [](const PipelineInfo* a, const PipelineInfo* b) {
+    return shaders::spirv(a->shader).size() > shaders::spirv(b->shader).size();
+  });
+  std::atomic<size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mu;
+  auto work = [&] {
+    for (size_t i; (i = next.fetch_add(1)) < order.size();) {
+      const PipelineInfo& p = *order[i];
+      try {
+        ComputePipeline(ctx, p.shader, p.bindings, p.spec, p.push_constant_bytes);
+      } catch (...) {
+        std::lock_guard lock(error_mu);
+        if (!error) error = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> workers;
+  const unsigned n = std::max(1u, std::min<unsigned>(threads, unsigned(order.size())));
+  for (unsigned w = 1; w < n; ++w) workers.emplace_back(work);
+  work();
+  for (auto& t : workers) t.join();
+  if (error) std::rethrow_exception(error);
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -51,6 +51,12 @@ void warmup_end();
 double warm_pipelines(const ContextOptions& options, const std::vector<PipelineInfo>& pipelines, unsigned threads,
                       const std::atomic<bool>& stop, bool readiness = true);
 
+// Creates `pipelines` on `ctx` (into its pipeline table, Context::cached_pipeline) with up to
+// `threads` threads at once, and returns the seconds it took. On a warm cache this is most of a
+// session's start: vkCreateComputePipelines translates and lowers each shader (lavapipe: a few
+// hundred ms for a ReSTIR pass), while the machine code comes from Mesa's cache at the first dispatch.
+double create_pipelines(const Context& ctx, const std::vector<PipelineInfo>& pipelines, unsigned threads);
+
 namespace detail {
 // For ComputePipeline: whether record_pipelines is running on this thread (then it records `info`).
 bool record_if_recording(const PipelineInfo& info);

@@ -58,7 +58,8 @@ Session::Session(std::string name, std::shared_ptr<const scene::Scene> scene, Se
   std::lock_guard lock(render_mu_);
   // `method auto` renders its first frames with its calibration's own runs.
   if (spec_.auto_method) return;
-  if (progressive_ && settings_.method != k_stand_in && !progressive_->compiled(*scene_, settings_)) {
+  std::vector<gpu::PipelineInfo> pipelines;
+  if (progressive_ && settings_.method != k_stand_in && !progressive_->compiled(*scene_, settings_, &pipelines)) {
     // The stand-in first: a pipeline both share is then not waited for behind the compile.
     render::RenderSettings stand_in = settings_;
     stand_in.method = k_stand_in;
@@ -69,6 +70,8 @@ Session::Session(std::string name, std::shared_ptr<const scene::Scene> scene, Se
     std::fflush(stdout);
     return;
   }
+  // Compiled before: created on every core at once, the renderer below finds them.
+  if (progressive_ && !pipelines.empty()) progressive_->create(ctx_, pipelines, name_);
   create_renderer_locked();
 }
 

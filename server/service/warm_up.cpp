@@ -88,14 +88,28 @@ std::shared_ptr<const PipelineCompile> WarmUp::compile(std::shared_ptr<const sce
   return state;
 }
 
-bool WarmUp::compiled(const scene::Scene& scene, const render::RenderSettings& settings) const {
+bool WarmUp::compiled(const scene::Scene& scene, const render::RenderSettings& settings,
+                      std::vector<gpu::PipelineInfo>* pipelines) const {
   try {
     gpu::Context recorder(device_);  // thrown away: its pipelines are layouts only
-    const auto pipelines = gpu::record_pipelines([&] { render::Renderer renderer(recorder, scene, settings); });
-    return gpu::all_compiled(pipelines, recorder.device_name());
+    auto recorded = gpu::record_pipelines([&] { render::Renderer renderer(recorder, scene, settings); });
+    const bool all = gpu::all_compiled(recorded, recorder.device_name());
+    if (pipelines) *pipelines = std::move(recorded);
+    return all;
   } catch (const std::exception&) {
     return false;
   }
+}
+
+void WarmUp::create(const gpu::Context& ctx, const std::vector<gpu::PipelineInfo>& pipelines, const std::string& label) const {
+  try {
+    const double seconds = gpu::create_pipelines(ctx, pipelines, threads_);
+    std::printf("stratad: %s: %zu compiled pipelines created in %.2f s on %u threads\n", label.c_str(), pipelines.size(),
+                seconds, threads_);
+  } catch (const std::exception& e) {
+    std::printf("stratad: %s: creating its pipelines in parallel failed (%s); the renderer creates them\n", label.c_str(), e.what());
+  }
+  std::fflush(stdout);
 }
 
 void WarmUp::run() {

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "gpu/context.h"
+#include "gpu/pipeline_warmup.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "service/config.h"
@@ -64,8 +65,15 @@ class WarmUp {
 
   // Whether the pipelines a renderer with `settings` creates for `scene` were compiled into Mesa's
   // disk cache before (gpu/compiled_pipelines.h): then its first frame only loads them. Records
-  // them on a device of its own (a few hundred ms); false when that fails.
-  bool compiled(const scene::Scene& scene, const render::RenderSettings& settings) const;
+  // them on a device of its own (a few hundred ms); false when that fails. `pipelines`, if given,
+  // receives them.
+  bool compiled(const scene::Scene& scene, const render::RenderSettings& settings,
+                std::vector<gpu::PipelineInfo>* pipelines = nullptr) const;
+
+  // Creates compiled `pipelines` on `ctx` on this object's threads at once, so that a renderer then
+  // finds them in the device's table instead of creating them one after another; `label` names the
+  // log line. A failure is left to the renderer, which creates them itself.
+  void create(const gpu::Context& ctx, const std::vector<gpu::PipelineInfo>& pipelines, const std::string& label) const;
 
   // Compiles the pipelines a renderer with `settings` creates for `scene`, after the jobs queued
   // before it; `label` names it in the log line. A job that fails marks itself done (the renderer

@@ -106,6 +106,18 @@ TEST(WarmUpTest, ColdCacheProgressiveStartRendersPtUntilTheMethodIsCompiled) {
       << taken_over->history_reset_reason();
   EXPECT_TRUE(stream.close().ok());
   std::printf("progressive start: the first frame by pt, restir-di from the second, after %.1f s of compile\n", compile_s);
+
+  // A second session of the same method and scene finds its pipelines listed: they are created on
+  // every core at once before its renderer, and its first frame is restir-di's.
+  const v1::Session again = create_ok(*stub, req);
+  StreamClient second(*stub);
+  ASSERT_TRUE(second.send(frame_input(1, again.name(), 0)));
+  const auto frame = second.read();
+  ASSERT_TRUE(frame) << daemon.process().output();
+  EXPECT_FALSE(compiling(*frame)) << frame->statistics().passes(0).reason();
+  EXPECT_TRUE(frame->statistics().has_reuse());
+  EXPECT_NE(daemon.process().output().find("compiled pipelines created in"), std::string::npos) << daemon.process().output();
+  EXPECT_TRUE(second.close().ok());
 }
 
 }  // namespace
