@@ -2,9 +2,9 @@
 // Layout: node i is instance i (with `matrix`, or TRS plus extras.strata.rest_matrix when it is
 // animated, as glTF forbids `matrix` on animated nodes), then the camera node; both are the
 // scene's roots. Extra LoD levels are nodes outside the scene, named by the instance's MSFT_lod
-// ids; then one node per punctual light (KHR_lights_punctual, its rest transform as `matrix`; a
-// light track is not written). The default animation is one glTF animation: T/R/S channels per track, T/R channels on
-// the camera node. Everything else strata needs rides in extras (see gltf_extras.h).
+// ids; then one node per punctual light (KHR_lights_punctual, its rest transform as `matrix`, or
+// as an instance's when the light has a track). The default animation is one glTF animation: T/R/S
+// channels per instance and light track, T/R channels on the camera node. Everything else strata needs rides in extras (see gltf_extras.h).
 // Exactness: floats go into float accessors or into JSON as doubles (which read back exactly);
 // an emission above 1 is split into emissiveFactor * emissiveStrength in double precision.
 #include <algorithm>
@@ -161,24 +161,28 @@ int time_accessor(GlbBuilder& b, const std::vector<Key>& keys) {
   return b.accessor(times, kFloat, TINYGLTF_TYPE_SCALAR, 1, 0, true);
 }
 
-void add_animation(GlbBuilder& b, const Scene& s, int camera_node) {
+// T/R/S channels of `node` from a track's keys.
+void trs_channels(GlbBuilder& b, tinygltf::Animation& animation, int node, const std::vector<TransformKey>& keys) {
+  const int input = time_accessor(b, keys);
+  std::vector<glm::vec3> translation, scale;
+  std::vector<glm::vec4> rotation;
+  for (const TransformKey& k : keys) {
+    translation.push_back(k.translation);
+    rotation.emplace_back(k.rotation.x, k.rotation.y, k.rotation.z, k.rotation.w);
+    scale.push_back(k.scale);
+  }
+  channel(b, animation, input, node, "translation", translation, TINYGLTF_TYPE_VEC3, 3);
+  channel(b, animation, input, node, "rotation", rotation, TINYGLTF_TYPE_VEC4, 4);
+  channel(b, animation, input, node, "scale", scale, TINYGLTF_TYPE_VEC3, 3);
+}
+
+void add_animation(GlbBuilder& b, const Scene& s, int camera_node, const std::vector<int>& light_nodes) {
   tinygltf::Animation animation;
   animation.name = "default";
-  for (const InstanceTrack& track : s.animation.tracks) {
-    if (track.keys.empty()) continue;
-    const int input = time_accessor(b, track.keys);
-    std::vector<glm::vec3> translation, scale;
-    std::vector<glm::vec4> rotation;
-    for (const TransformKey& k : track.keys) {
-      translation.push_back(k.translation);
-      rotation.emplace_back(k.rotation.x, k.rotation.y, k.rotation.z, k.rotation.w);
-      scale.push_back(k.scale);
-    }
-    const int node = static_cast<int>(track.instance);
-    channel(b, animation, input, node, "translation", translation, TINYGLTF_TYPE_VEC3, 3);
-    channel(b, animation, input, node, "rotation", rotation, TINYGLTF_TYPE_VEC4, 4);
-    channel(b, animation, input, node, "scale", scale, TINYGLTF_TYPE_VEC3, 3);
-  }
+  for (const InstanceTrack& track : s.animation.tracks)
+    if (!track.keys.empty()) trs_channels(b, animation, static_cast<int>(track.instance), track.keys);
+  for (const LightTrack& track : s.animation.light_tracks)
+    if (!track.keys.empty()) trs_channels(b, animation, light_nodes[track.light], track.keys);
   if (!s.animation.camera.empty()) {
     const int input = time_accessor(b, s.animation.camera);
     std::vector<glm::vec3> position;
@@ -193,7 +197,8 @@ void add_animation(GlbBuilder& b, const Scene& s, int camera_node) {
   if (!animation.channels.empty()) b.model().animations.push_back(std::move(animation));
 }
 
-void add_nodes(GlbBuilder& b, const Scene& s) {
+// Returns the node of each punctual light.
+std::vector<int> add_nodes(GlbBuilder& b, const Scene& s) {
   tinygltf::Model& m = b.model();
   std::vector<bool> animated(s.instances.size(), false);
   for (const InstanceTrack& track : s.animation.tracks) {
@@ -251,6 +256,10 @@ void add_nodes(GlbBuilder& b, const Scene& s) {
         tinygltf::Value(tinygltf::Value::Object{{"ids", tinygltf::Value(ids)}});
     b.use_extension(kLodExtension);
   }
+  std::vector<int> light_nodes;
+  std::vector<bool> animated_lights(s.lights.size(), false);
+  for (const LightTrack& track : s.animation.light_tracks)
+    if (track.light < animated_lights.size() && !track.keys.empty()) animated_lights[track.light] = true;
   for (size_t i = 0; i < s.lights.size(); ++i) {
     const Light& light = s.lights[i];
     tinygltf::Light out;
@@ -266,16 +275,26 @@ void add_nodes(GlbBuilder& b, const Scene& s) {
     m.lights.push_back(out);  // tinygltf writes them as KHR_lights_punctual and lists the extension
     tinygltf::Node node;
     node.name = light.name;
-    for (int c = 0; c < 4; ++c) {
-      for (int r = 0; r < 4; ++r) node.matrix.push_back(light.transform[c][r]);
+    if (animated_lights[i]) {
+      const TransformKey trs = decompose_trs(light.transform);
+      node.translation = doubles({trs.translation.x, trs.translation.y, trs.translation.z});
+      node.rotation = doubles({trs.rotation.x, trs.rotation.y, trs.rotation.z, trs.rotation.w});
+      node.scale = doubles({trs.scale.x, trs.scale.y, trs.scale.z});
+      node.extras = gltf::light_node_extras(light.transform);
+    } else {
+      for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) node.matrix.push_back(light.transform[c][r]);
+      }
     }
     node.extensions["KHR_lights_punctual"] =
         tinygltf::Value(tinygltf::Value::Object{{"light", tinygltf::Value(static_cast<int>(i))}});
     m.nodes.push_back(node);
     scene.nodes.push_back(static_cast<int>(m.nodes.size() - 1));
+    light_nodes.push_back(static_cast<int>(m.nodes.size() - 1));
   }
   m.scenes.push_back(scene);
   m.defaultScene = 0;
+  return light_nodes;
 }
 
 }  // namespace
@@ -294,8 +313,8 @@ std::vector<uint8_t> export_glb(const Scene& scene) {
     for (const Primitive& p : mesh.primitives) out.primitives.push_back(primitive(b, p));
     b.model().meshes.push_back(out);
   }
-  add_nodes(b, scene);
-  add_animation(b, scene, static_cast<int>(scene.instances.size()));
+  const std::vector<int> light_nodes = add_nodes(b, scene);
+  add_animation(b, scene, static_cast<int>(scene.instances.size()), light_nodes);
   std::ostringstream stream;
   tinygltf::TinyGLTF writer;
   if (!writer.WriteGltfSceneToStream(&b.model(), stream, false, true)) {

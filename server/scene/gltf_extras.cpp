@@ -65,18 +65,26 @@ Value scene_extras(const Scene& scene) {
   return Value(Value::Object{{"strata", Value(std::move(strata))}});
 }
 
+namespace {
+Value matrix_value(const glm::mat4& matrix) {
+  Value::Array m;
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) m.push_back(number(matrix[c][r]));
+  }
+  return Value(std::move(m));
+}
+}  // namespace
+
 Value node_extras(const Instance& instance, bool write_rest_matrix) {
   Value::Object strata;
   if (instance.lod != 0) strata.emplace("lod", Value(static_cast<int>(instance.lod)));
-  if (write_rest_matrix) {
-    Value::Array m;
-    for (int c = 0; c < 4; ++c) {
-      for (int r = 0; r < 4; ++r) m.push_back(number(instance.transform[c][r]));
-    }
-    strata.emplace("rest_matrix", Value(std::move(m)));
-  }
+  if (write_rest_matrix) strata.emplace("rest_matrix", matrix_value(instance.transform));
   if (strata.empty()) return Value();
   return Value(Value::Object{{"strata", Value(std::move(strata))}});
+}
+
+Value light_node_extras(const glm::mat4& rest_matrix) {
+  return Value(Value::Object{{"strata", Value(Value::Object{{"rest_matrix", matrix_value(rest_matrix)}})}});
 }
 
 bool read_scene_extras(const Source& s, int scene_index, Scene& scene) {

@@ -18,6 +18,8 @@ namespace strata::scene::gltf {
 
 tinygltf::Value scene_extras(const Scene& scene);
 tinygltf::Value node_extras(const Instance& instance, bool write_rest_matrix);
+// An animated light node's extras: its exact rest transform (TRS alone may not compose back to it).
+tinygltf::Value light_node_extras(const glm::mat4& rest_matrix);
 
 // Applies extras.strata of `scene_index` to `scene`; false when the file has none.
 bool read_scene_extras(const Source& source, int scene_index, Scene& scene);

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "scene/gltf_convert.h"
+#include "scene/gltf_extras.h"
 
 namespace strata::scene::gltf {
 namespace {
@@ -95,7 +96,8 @@ void convert_lights(const Source& s, NodeTree& tree, Scene& scene) {
                         std::to_string(s.limits.max_instances) + ")");
     }
     Light out = lights[size_t(light)];
-    out.transform = world_of(tree, i);
+    // An animated light's exported node holds TRS and its exact rest matrix in extras (gltf_export.cpp).
+    out.transform = read_node_extras(s, int(i)).rest_matrix.value_or(world_of(tree, i));
     if (out.name.empty()) out.name = s.model.nodes[i].name;
     scene.lights.push_back(std::move(out));
     tree.light_node.push_back(uint32_t(i));
