@@ -2,6 +2,7 @@
 // drain it gracefully (health NOT_SERVING, new work refused, frames in flight finished, exit 0).
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -85,6 +86,20 @@ int run_serve(ServeArgs& a) {
   std::cout << "stratad: " << strsignal(sig) << ": draining" << std::endl;
   server.drain();
   ops.stop();  // the pages read the service: they stop before it goes
+  // A compile in progress cannot be cut short (LLVM); the service waits for it as it goes, so that
+  // its code reaches Mesa's cache. Say so, and let a second signal end the process at once.
+  const auto* compiler = server.core().compiler.get();
+  if (compiler && compiler->busy()) {
+    std::cout << "stratad: waiting for the pipeline compile in progress (its code goes to Mesa's cache; up to a minute or "
+                 "two on a cold cache): send SIGTERM or SIGINT again to exit now"
+              << std::endl;
+    std::thread([signals] {
+      int again = 0;
+      sigwait(&signals, &again);
+      std::cout << "stratad: " << strsignal(again) << ": exiting without waiting for the compile" << std::endl;
+      std::_Exit(0);
+    }).detach();
+  }
   std::cout << "stratad: stopped" << std::endl;
   return 0;
 }

@@ -122,7 +122,9 @@ void WarmUp::run() {
       job = std::move(jobs_.front());
       jobs_.pop_front();
     }
+    busy_ = true;
     run_job(job);
+    busy_ = false;
     if (job.state) {
       job.state->seconds_ = seconds_since(job.state->submitted_);
       job.state->done_ = true;

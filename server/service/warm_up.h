@@ -75,6 +75,9 @@ class WarmUp {
   // log line. A failure is left to the renderer, which creates them itself.
   void create(const gpu::Context& ctx, const std::vector<gpu::PipelineInfo>& pipelines, const std::string& label) const;
 
+  // Whether a job is compiling now (destroying this object waits for the pipelines in progress).
+  bool busy() const { return busy_.load(); }
+
   // Compiles the pipelines a renderer with `settings` creates for `scene`, after the jobs queued
   // before it; `label` names it in the log line. A job that fails marks itself done (the renderer
   // then compiles at its first dispatch, as without it).
@@ -95,6 +98,7 @@ class WarmUp {
   const gpu::Context* const service_;
   const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   std::atomic<bool> stop_{false};
+  std::atomic<bool> busy_{false};
   std::mutex mu_;
   std::condition_variable cv_;
   std::deque<Job> jobs_;

@@ -7,6 +7,8 @@
 // The progressive start on a cold machine: a session's first frames are rendered by pt while its
 // method's pipelines compile in the background, each frame saying so, and the frame after the
 // compile is the method's, with a history reset that says why.
+#include <csignal>
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -55,6 +57,31 @@ TEST(WarmUpTest, ColdCachePipelinesCompileAtStartNotInTheFirstFrame) {
   EXPECT_LT(frames[0].timing().render_ms(), 0.1 * warm_s * 1000.0)
       << "the first frame took " << frames[0].timing().render_ms() << " ms after a " << warm_s << " s warm-up";
   std::printf("warm-up %.1f s; first restir-gather frame at 16x16 %.0f ms\n", warm_s, frames[0].timing().render_ms());
+}
+
+// SIGTERM while a compile is in progress: the daemon says that it waits for the compile (LLVM cannot
+// be cut short, and the code is kept in Mesa's cache), and a second signal ends it at once.
+TEST(WarmUpTest, ColdCacheASecondSignalEndsTheWaitForACompileInProgress) {
+  TempDir cache;
+  ::setenv("MESA_SHADER_CACHE_DIR", cache.path.c_str(), 1);
+  ::setenv("GALLIVM_PERF", "nopt", 1);
+  OpsDaemon daemon({"--http", "127.0.0.1:0", "--warm-up", "restir-gather"});
+  ::unsetenv("MESA_SHADER_CACHE_DIR");
+  ::unsetenv("GALLIVM_PERF");
+  ASSERT_EQ(http_get(daemon.http_address(), "/readyz").status, 503) << "restir-gather compiled too soon for this test";
+  daemon.process().signal(SIGTERM);
+  const std::string waiting = "waiting for the pipeline compile in progress";
+  ASSERT_TRUE(wait_until([&] { return daemon.process().output().find(waiting) != std::string::npos; }, 30s))
+      << daemon.process().output();
+  const auto t0 = std::chrono::steady_clock::now();
+  daemon.process().signal(SIGTERM);
+  const auto status = daemon.process().wait_exit(15s);
+  ASSERT_TRUE(status.has_value()) << "still running 15 s after the second signal: " << daemon.process().output();
+  EXPECT_EQ(*status, 0);
+  EXPECT_NE(daemon.process().output().find("exiting without waiting for the compile"), std::string::npos)
+      << daemon.process().output();
+  std::printf("exited %.2f s after the second signal\n",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 }
 
 TEST(WarmUpTest, ColdCacheProgressiveStartRendersPtUntilTheMethodIsCompiled) {
