@@ -30,6 +30,12 @@ WarmupState& state() {
   return s;
 }
 
+// The longest first (by SPIR-V size, which follows the compile time): the last pipeline to start
+// is then a short one, and the threads finish close together.
+bool longer_spirv(const PipelineInfo& a, const PipelineInfo& b) {
+  return shaders::spirv(a.shader).size() > shaders::spirv(b.shader).size();
+}
+
 }  // namespace
 
 std::string PipelineInfo::key() const {
@@ -80,11 +86,7 @@ double warm_pipelines(const ContextOptions& options, const std::vector<PipelineI
       if (s.keys.insert(p.key()).second) todo.push_back(p);
     if (readiness) s.total += todo.size();
   }
-  // The longest first (by SPIR-V size, which follows the compile time): the last pipeline to start
-  // is then a short one, and the threads finish close together.
-  std::stable_sort(todo.begin(), todo.end(), [](const PipelineInfo& a, const PipelineInfo& b) {
-    return shaders::spirv(a.shader).size() > shaders::spirv(b.shader).size();
-  });
+  std::stable_sort(todo.begin(), todo.end(), longer_spirv);
   std::atomic<size_t> next{0};
   std::vector<std::thread> workers;
   const unsigned n = std::max(1u, std::min<unsigned>(threads, unsigned(todo.size())));
@@ -120,9 +122,7 @@ double create_pipelines(const Context& ctx, const std::vector<PipelineInfo>& pip
   const auto start = std::chrono::steady_clock::now();
   std::vector<const PipelineInfo*> order;
   for (const auto& p : pipelines) order.push_back(&p);
-  std::stable_sort(order.begin(), order.end(), [](const PipelineInfo* a, const PipelineInfo* b) {
-    return shaders::spirv(a->shader).size() > shaders::spirv(b->shader).size();
-  });
+  std::stable_sort(order.begin(), order.end(), [](const PipelineInfo* a, const PipelineInfo* b) { return longer_spirv(*a, *b); });
   std::atomic<size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mu;

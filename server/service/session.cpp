@@ -71,7 +71,7 @@ Session::Session(std::string name, std::shared_ptr<const scene::Scene> scene, Se
     return;
   }
   // Compiled before: created on every core at once, the renderer below finds them.
-  if (progressive_ && !pipelines.empty()) progressive_->create(ctx_, pipelines, name_);
+  if (!pipelines.empty()) progressive_->create(ctx_, pipelines, name_);
   create_renderer_locked();
 }
 
