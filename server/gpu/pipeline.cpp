@@ -15,11 +15,12 @@ ComputePipeline::ComputePipeline(const Context& ctx, std::string shader, std::sp
                                  std::span<const SpecConstant> spec, uint32_t push_constant_bytes)
     : name_(std::move(shader)), bindings_(bindings.begin(), bindings.end()) {
   const PipelineInfo info{name_, bindings_, {spec.begin(), spec.end()}, push_constant_bytes};
-  const std::string key = info.key();
-  // Recording what a renderer needs (gpu/pipeline_warmup.h): layouts only, no compile.
+  key_ = info.key();
+  // Recording what a renderer needs (gpu/pipeline_warmup.h): layouts only, no compile. Creating
+  // does not wait for a warm-up of the same key: lavapipe compiles at the first dispatch, which
+  // waits (wait_if_warming), so that a renderer can be made while some of its pipelines still warm.
   const bool record_only = detail::record_if_recording(info);
-  if (!record_only) detail::wait_if_warming(key);  // its code is being compiled: that compile is this one's
-  objects_ = std::static_pointer_cast<Objects>(ctx.cached_pipeline(key, [&]() -> std::shared_ptr<void> {
+  objects_ = std::static_pointer_cast<Objects>(ctx.cached_pipeline(key_, [&]() -> std::shared_ptr<void> {
     auto o = std::make_shared<Objects>();
     o->device = ctx.device();
     std::vector<VkDescriptorSetLayoutBinding> lb;
@@ -66,7 +67,7 @@ ComputePipeline::ComputePipeline(const Context& ctx, std::string shader, std::sp
     static const bool log = std::getenv("STRATA_LOG_PIPELINES") != nullptr;
     if (log)
       std::fprintf(stderr, "pipeline %8.1f ms  %s\n",
-                   std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(), key.c_str());
+                   std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(), key_.c_str());
     vkDestroyShaderModule(ctx.device(), module, nullptr);
     check(r, ("vkCreateComputePipelines(" + name_ + ")").c_str());
     return o;
@@ -132,9 +133,16 @@ void DescriptorSet::bind_tlas(uint32_t binding, VkAccelerationStructureKHR tlas)
   vkUpdateDescriptorSets(ctx_.device(), 1, &w, 0, nullptr);
 }
 
+void ComputePipeline::wait_if_warming() const {
+  if (warm_checked_.load(std::memory_order_acquire)) return;
+  detail::wait_if_warming(key_);
+  warm_checked_.store(true, std::memory_order_release);
+}
+
 namespace {
 void bind(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, const void* push_constants,
           uint32_t push_bytes) {
+  p.wait_if_warming();
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline());
   if (push_bytes > 0) vkCmdPushConstants(cmd, p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes, push_constants);
   VkDescriptorSet s = set.handle();
@@ -161,8 +169,8 @@ void dispatch_1d(VkCommandBuffer cmd, const ComputePipeline& p, const Descriptor
 }
 
 void dispatch_indirect(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, const Buffer& args,
-                       VkDeviceSize offset) {
-  bind(cmd, p, set, nullptr, 0);
+                       VkDeviceSize offset, const void* push_constants, uint32_t push_bytes) {
+  bind(cmd, p, set, push_constants, push_bytes);
   vkCmdDispatchIndirect(cmd, args.handle(), offset);
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Compute pipelines from the SPIR-V compiled in at build time, with specialization constants,
 // and the descriptor sets that feed them.
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -34,6 +35,9 @@ class ComputePipeline {
   VkDescriptorSetLayout set_layout() const { return objects_->set_layout; }
   const std::string& name() const { return name_; }
   const std::vector<Binding>& bindings() const { return bindings_; }
+  // Before its first dispatch: waits while a warm-up compiles its code (gpu/pipeline_warmup.h), so
+  // that the dispatch loads that code from Mesa's cache instead of compiling it alongside.
+  void wait_if_warming() const;
 
  private:
   // The Vulkan objects, shared through the context's pipeline cache (Context::cached_pipeline).
@@ -45,8 +49,10 @@ class ComputePipeline {
     ~Objects();
   };
   std::string name_;
+  std::string key_;  // PipelineInfo::key
   std::vector<Binding> bindings_;
   std::shared_ptr<Objects> objects_;
+  mutable std::atomic<bool> warm_checked_{false};
 };
 
 // One descriptor set for one pipeline, in its own small pool.
@@ -85,7 +91,7 @@ void dispatch_1d(VkCommandBuffer cmd, const ComputePipeline& p, const Descriptor
 // The same with the workgroup counts read from `args` at `offset` (a VkDispatchIndirectCommand an
 // earlier pass wrote; `args` needs k_indirect_usage).
 void dispatch_indirect(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, const Buffer& args,
-                       VkDeviceSize offset = 0);
+                       VkDeviceSize offset = 0, const void* push_constants = nullptr, uint32_t push_bytes = 0);
 
 // Full compute-to-compute/transfer barrier between passes (also makes indirect arguments written
 // by a pass visible to a later dispatch_indirect).

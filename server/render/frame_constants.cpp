@@ -92,7 +92,7 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   c.prev_env_select_prob = env_select_prob(setup.env_nee, scene, scene.prev_total_emitter_power());
   c.prev_width = setup.width;
   c.prev_height = setup.height;
-  if (scene.history_valid()) {
+  if (scene.history_valid() && !setup.history_held) {
     c.history_flags = gpu::HISTORY_VALID;
     if (scene.moved_since_previous()) c.history_flags |= gpu::HISTORY_SCENE_MOVED;
     if (scene.lights_reselected() || c.env_select_prob != c.prev_env_select_prob) c.history_flags |= gpu::HISTORY_LIGHTS_RESELECTED;

@@ -17,6 +17,7 @@ struct FrameSetup {
   bool env_nee = false;  // the environment is sampled by next-event estimation
   uint32_t splats_per_frame = 1;  // restir-splat*: K over an open shutter
   bool fixed_primary = false;     // PRIMARY_DOMAIN: the primary stage traces each pixel's camera sample
+  bool history_held = false;      // the history passes wait for their pipelines: the frame has no history (Renderer::hold_history)
 };
 
 // Whether next-event estimation samples the environment (docs/ARCHITECTURE.md, Light sampling):

@@ -35,7 +35,9 @@ struct MethodFrame {
   uint32_t frame_index;
   uint64_t sample_base;  // samples already accumulated for this frame state
   bool env_nee;          // the environment is sampled by next-event estimation
-  bool history_valid;    // the scene's previous slot holds the previous frame (GpuScene::history_valid)
+  bool history_valid;    // the scene's previous slot holds the previous frame (GpuScene::history_valid), and the
+                         // history passes may run (false while held: Renderer::hold_history)
+  bool history_held;     // history_valid is false because the history passes wait for their pipelines
   bool scene_moved;      // some transform, LoD level or punctual light changed since the previous frame
 };
 

@@ -34,8 +34,8 @@ PassResource history_previous(uint32_t binding, const PingPong& history) {
 }
 
 Pass::Pass(const gpu::Context& ctx, const GpuScene* scene, SceneUse use, const char* shader, std::vector<PassResource> resources,
-           std::vector<gpu::SpecConstant> spec)
-    : scene_(scene), use_(use), resources_(std::move(resources)) {
+           std::vector<gpu::SpecConstant> spec, uint32_t push_bytes)
+    : scene_(scene), use_(use), push_bytes_(push_bytes), resources_(std::move(resources)) {
   std::vector<gpu::Binding> bindings;
   const bool punctual = scene_ && use_.lights && scene_->has_punctual();
   if (scene_) bindings = scene_->bindings(use_.lights, use_.history);
@@ -43,7 +43,8 @@ Pass::Pass(const gpu::Context& ctx, const GpuScene* scene, SceneUse use, const c
   if (scene_ && use_.history && scene_->lod_mapping_compiled()) spec.push_back({SPEC_LOD_MAPPING, VK_TRUE});
   if (punctual) spec.push_back({SPEC_PUNCTUAL, VK_TRUE});
   if (scene_) scene_->add_spec(spec);
-  pipeline_ = std::make_unique<gpu::ComputePipeline>(ctx, scene_ ? scene_->shader(shader) : std::string(shader), bindings, spec, 0);
+  pipeline_ = std::make_unique<gpu::ComputePipeline>(ctx, scene_ ? scene_->shader(shader) : std::string(shader), bindings, spec,
+                                                      push_bytes_);
   for (auto& s : sets_) s = std::make_unique<gpu::DescriptorSet>(ctx, *pipeline_);
   rebind();
 }
@@ -58,8 +59,8 @@ void Pass::rebind() {
   }
 }
 
-void Pass::dispatch_2d(VkCommandBuffer cmd, int parity, uint32_t width, uint32_t height) const {
-  gpu::dispatch_2d(cmd, *pipeline_, *sets_[size_t(parity & 1)], width, height);
+void Pass::dispatch_2d(VkCommandBuffer cmd, int parity, uint32_t width, uint32_t height, const void* push) const {
+  gpu::dispatch_2d(cmd, *pipeline_, *sets_[size_t(parity & 1)], width, height, push, push ? push_bytes_ : 0);
 }
 
 void Pass::dispatch_layers(VkCommandBuffer cmd, int parity, uint32_t width, uint32_t height, uint32_t layers) const {
@@ -70,8 +71,8 @@ void Pass::dispatch_1d(VkCommandBuffer cmd, int parity, uint32_t count) const {
   gpu::dispatch_1d(cmd, *pipeline_, *sets_[size_t(parity & 1)], count);
 }
 
-void Pass::dispatch_indirect(VkCommandBuffer cmd, int parity, const gpu::Buffer& args, VkDeviceSize offset) const {
-  gpu::dispatch_indirect(cmd, *pipeline_, *sets_[size_t(parity & 1)], args, offset);
+void Pass::dispatch_indirect(VkCommandBuffer cmd, int parity, const gpu::Buffer& args, VkDeviceSize offset, const void* push) const {
+  gpu::dispatch_indirect(cmd, *pipeline_, *sets_[size_t(parity & 1)], args, offset, push, push ? push_bytes_ : 0);
 }
 
 }  // namespace strata::render

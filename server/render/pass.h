@@ -58,9 +58,10 @@ struct SceneUse {
 
 class Pass {
  public:
-  // `scene` null: the pass binds no scene resources.
+  // `scene` null: the pass binds no scene resources. `push_bytes`: the size of the shader's push
+  // constant block, which every dispatch then passes (`push`).
   Pass(const gpu::Context& ctx, const GpuScene* scene, SceneUse use, const char* shader, std::vector<PassResource> resources,
-       std::vector<gpu::SpecConstant> spec = {});
+       std::vector<gpu::SpecConstant> spec = {}, uint32_t push_bytes = 0);
   ~Pass();
   Pass(const Pass&) = delete;
   Pass& operator=(const Pass&) = delete;
@@ -70,16 +71,18 @@ class Pass {
   const std::string& shader() const { return pipeline_->name(); }
   const std::vector<PassResource>& resources() const { return resources_; }
 
-  void dispatch_2d(VkCommandBuffer cmd, int parity, uint32_t width, uint32_t height) const;
+  void dispatch_2d(VkCommandBuffer cmd, int parity, uint32_t width, uint32_t height, const void* push = nullptr) const;
   void dispatch_layers(VkCommandBuffer cmd, int parity, uint32_t width, uint32_t height, uint32_t layers) const;
   void dispatch_1d(VkCommandBuffer cmd, int parity, uint32_t count) const;
   // Workgroup counts read from `args` at `offset` (VkDispatchIndirectCommand), e.g. one thread per
   // entry of a dense domain list that an earlier pass compacted.
-  void dispatch_indirect(VkCommandBuffer cmd, int parity, const gpu::Buffer& args, VkDeviceSize offset = 0) const;
+  void dispatch_indirect(VkCommandBuffer cmd, int parity, const gpu::Buffer& args, VkDeviceSize offset = 0,
+                         const void* push = nullptr) const;
 
  private:
   const GpuScene* scene_;
   SceneUse use_;
+  uint32_t push_bytes_ = 0;
   std::vector<PassResource> resources_;
   std::unique_ptr<gpu::ComputePipeline> pipeline_;
   std::array<std::unique_ptr<gpu::DescriptorSet>, 2> sets_;

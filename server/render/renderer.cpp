@@ -101,12 +101,13 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
 
     FrameSetup setup{settings_.width, settings_.height, frame_index,       settings_.seed,
                      settings_.spp,   settings_.max_depth, env_nee, settings_.restir.splats_per_frame,
-                     method_->fixed_primary()};
+                     method_->fixed_primary(), history_held_};
     gpu::GpuFrameConstants c = make_frame_constants(frame, sc.environment, *scene_, setup);
     constants_.upload(&c, sizeof c);
 
     method_->record(cmd, *timer_,
-                    MethodFrame{frame, frame_index, accumulated_spp_, env_nee, scene_->history_valid(), scene_->moved_since_previous()});
+                    MethodFrame{frame, frame_index, accumulated_spp_, env_nee, scene_->history_valid() && !history_held_, history_held_,
+                                scene_->moved_since_previous()});
   });
   accumulated_spp_ += settings_.spp;
 

@@ -60,6 +60,13 @@ class Renderer {
   // one frame state); the caller keeps the frame state unchanged while accumulating.
   FrameResult render(const scene::FrameState& frame, uint32_t frame_index, bool accumulate = false);
 
+  // While held, frames render as if they had no previous frame (the history passes, e.g. the
+  // temporal pass, do not run and each frame's reservoirs start afresh): a progressive start holds
+  // them until their pipelines are compiled (service/warm_up.h). Releasing it needs no reset: the
+  // previous frame's reservoirs and scene slot are kept every frame.
+  void hold_history(bool held) { history_held_ = held; }
+  bool history_held() const { return history_held_; }
+
   // The last rendered frame's domain map (restir-multilayer; none for methods without pixel layers).
   std::optional<DomainMap> domain_map() const;
 
@@ -77,6 +84,7 @@ class Renderer {
   std::unique_ptr<gpu::PassTimer> timer_;
   std::unique_ptr<Method> method_;
   uint64_t accumulated_spp_ = 0;
+  bool history_held_ = false;
 };
 
 }  // namespace strata::render

@@ -92,13 +92,28 @@ void Session::submit_compile_locked() {
 
 bool Session::compiling_locked(uint64_t index, std::string& reason) {
   if (!compile_) return false;
-  if (!compile_->done()) return true;
+  if (!compile_->first_frame_ready()) return true;
+  const bool staged = !compile_->done();  // the history passes' pipelines still compile
   if (stand_in_ || !renderer_) {
     stand_in_.reset();
-    reason += (reason.empty() ? "" : "; ") + settings_.method + "'s pipelines are compiled (" +
-              std::to_string(compile_->pipelines()) + " in " + seconds_text(compile_->seconds()) + "): it renders from this frame on, its history starting here";
-    std::printf("stratad: %s: %s renders from frame %llu on (its pipelines compiled in %s)\n", name_.c_str(), settings_.method.c_str(),
-                static_cast<unsigned long long>(index), seconds_text(compile_->seconds()).c_str());
+    const double s = staged ? compile_->first_frame_seconds() : compile_->seconds();
+    const size_t n = compile_->pipelines() - (staged ? compile_->history_pipelines() : 0);
+    reason += (reason.empty() ? "" : "; ") + settings_.method + "'s pipelines are compiled (" + std::to_string(n) + " in " +
+              seconds_text(s) + "): it renders from this frame on, its history starting here" +
+              (staged ? std::string(", its history passes held until theirs are compiled") : std::string());
+    std::printf("stratad: %s: %s renders from frame %llu on (%zu pipelines compiled in %s%s)\n", name_.c_str(), settings_.method.c_str(),
+                static_cast<unsigned long long>(index), n, seconds_text(s).c_str(), staged ? "; its history passes held" : "");
+    std::fflush(stdout);
+  }
+  if (staged) {
+    history_held_ = true;
+    return false;
+  }
+  if (history_held_) {
+    history_held_ = false;
+    std::printf("stratad: %s: the history passes of %s are compiled (%zu pipelines in %s since the session began): its frames reuse history from frame %llu on\n",
+                name_.c_str(), settings_.method.c_str(), compile_->history_pipelines(), seconds_text(compile_->seconds()).c_str(),
+                static_cast<unsigned long long>(index));
     std::fflush(stdout);
   }
   compile_.reset();
@@ -285,6 +300,7 @@ RenderedFrame Session::render(PendingInput input) {
     stand_in_ = std::make_unique<render::Renderer>(ctx_, *scene_, stand_in);
   }
   if (!calibrating && !compiling && !renderer_) create_renderer_locked();
+  if (!calibrating && !compiling) renderer_->hold_history(history_held_);
   // Motion blur (RS-main 4.4): the shutter opens on the way from the camera of the frame rendered
   // before; the session's first frame has none and is an instant.
   frame_state_.camera_open = last_camera_ ? scene::shutter_open_camera(*last_camera_, frame_state_.camera) : std::nullopt;

@@ -111,7 +111,8 @@ class Session {
   // Progressive start (render_mu_ held): submits the compile of settings_'s pipelines.
   void submit_compile_locked();
   // Progressive start (render_mu_ held): whether frames are still rendered by pt; the frame after
-  // the compile ended adds to `reason` that the method takes over.
+  // the first stage of the compile adds to `reason` that the method takes over, and history_held_
+  // says whether its history passes still wait for the second (service/warm_up.h).
   bool compiling_locked(uint64_t index, std::string& reason);
   void apply_locked(const PendingInput& input, std::string& reset_reason, std::vector<v1::Decision>& option_changes);
   // `method auto` (render_mu_ held): drops the choice so that the next frame calibrates again.
@@ -146,6 +147,7 @@ class Session {
   WarmUp* const progressive_;
   std::shared_ptr<const PipelineCompile> compile_;
   std::unique_ptr<render::Renderer> stand_in_;
+  bool history_held_ = false;  // the method renders, its history passes held until compiled
 
   // Description and counters: guarded by mu_ (taken after render_mu_ when both are needed).
   mutable std::mutex mu_;

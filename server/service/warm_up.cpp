@@ -7,6 +7,7 @@
 
 #include "gpu/compiled_pipelines.h"
 #include "gpu/pipeline_warmup.h"
+#include "render/history_passes.h"
 #include "render/method_table.h"
 #include "service/options.h"
 #include "service/scene_source.h"
@@ -145,15 +146,35 @@ void WarmUp::run_job(const Job& job) {
       pipelines = gpu::record_pipelines([&] { render::Renderer renderer(recorder, *job.scene, job.settings); });
       device_name = recorder.device_name();
     }
-    if (job.state) job.state->pipelines_ = pipelines.size();
-    const double seconds = gpu::warm_pipelines(device_, pipelines, threads_, stop_, /*readiness=*/!job.state);
-    // The service's device keeps them in its pipeline table (gpu::Context::cached_pipeline).
-    if (job.state && service_)
-      for (const auto& p : pipelines) {
-        if (stop_.load()) break;
-        gpu::ComputePipeline(*service_, p.shader, p.bindings, p.spec, p.push_constant_bytes);
-      }
-    if (!stop_.load()) gpu::note_compiled(pipelines, device_name);
+    // A session's job compiles its history passes' pipelines last (render/history_passes.h).
+    std::vector<gpu::PipelineInfo> first, history;
+    for (const auto& p : pipelines) (job.state && render::history_only_shader(p.shader) ? history : first).push_back(p);
+    if (job.state) {
+      job.state->pipelines_ = pipelines.size();
+      job.state->history_pipelines_ = history.size();
+    }
+    auto compile = [&](const std::vector<gpu::PipelineInfo>& set) {
+      if (set.empty()) return 0.0;
+      const double s = gpu::warm_pipelines(device_, set, threads_, stop_, /*readiness=*/!job.state);
+      // The service's device keeps them in its pipeline table (gpu::Context::cached_pipeline).
+      if (job.state && service_)
+        for (const auto& p : set) {
+          if (stop_.load()) break;
+          gpu::ComputePipeline(*service_, p.shader, p.bindings, p.spec, p.push_constant_bytes);
+        }
+      if (!stop_.load()) gpu::note_compiled(set, device_name);
+      return s;
+    };
+    double seconds = compile(first);
+    if (job.state && !history.empty() && !stop_.load()) {
+      job.state->first_seconds_ = job.state->seconds();
+      job.state->first_ready_ = true;
+      std::printf("stratad: %s: %zu of the %zu pipelines of %s compiled in %.1f s: it renders from its next frame, its history "
+                  "passes (%zu pipelines) held until they are compiled\n",
+                  job.label.c_str(), first.size(), pipelines.size(), method.c_str(), seconds, history.size());
+      std::fflush(stdout);
+      seconds += compile(history);
+    }
     if (stop_.load()) {
       std::printf("stratad: %s: compiling the pipelines of %s stopped after %.1f s: the service stops\n", job.label.c_str(),
                   method.c_str(), seconds);

@@ -7,7 +7,10 @@
 // - The progressive start of a session (`stratad serve`, on by default; service/session.h): the
 //   pipelines of the session's own renderer, recorded from its own settings, so that the variants
 //   compiled (specialization constants, bindings) are exactly those its frames dispatch and each is
-//   compiled once. /readyz is not affected; frames and a log line say it.
+//   compiled once. /readyz is not affected; frames and a log line say it. In two stages: first
+//   those a frame without history dispatches, after which the method renders with its history
+//   held; then the history passes' (render/history_passes.h: the temporal reuse, the largest
+//   shaders), after which its frames reuse history.
 // Code compiled here lands in Mesa's disk cache, where the service's device finds it, and is listed
 // as compiled (gpu/compiled_pipelines.h): a session whose pipelines are all listed starts with its
 // method at once, as its first frame only loads their code. A session's
@@ -36,9 +39,15 @@ namespace strata::service {
 class PipelineCompile {
  public:
   bool done() const { return done_.load(); }
-  // The pipelines recorded (0 until recorded), and the seconds from submission to done (or so far).
+  // Whether the pipelines that a frame without history dispatches are compiled: the method can
+  // render from now on, its history passes held (render/history_passes.h) until done().
+  bool first_frame_ready() const { return first_ready_.load() || done(); }
+  // The pipelines recorded (0 until recorded), of them the history passes' (compiled last), and
+  // the seconds from submission to done (or so far) and to first_frame_ready.
   size_t pipelines() const { return pipelines_.load(); }
+  size_t history_pipelines() const { return history_pipelines_.load(); }
   double seconds() const;
+  double first_frame_seconds() const { return first_seconds_.load(); }
   const std::string& method() const { return method_; }
 
  private:
@@ -47,8 +56,11 @@ class PipelineCompile {
   const std::string method_;
   const std::chrono::steady_clock::time_point submitted_ = std::chrono::steady_clock::now();
   std::atomic<bool> done_{false};
+  std::atomic<bool> first_ready_{false};
   std::atomic<size_t> pipelines_{0};
+  std::atomic<size_t> history_pipelines_{0};
   std::atomic<double> seconds_{0.0};
+  std::atomic<double> first_seconds_{0.0};
 };
 
 class WarmUp {

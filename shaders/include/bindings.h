@@ -60,7 +60,6 @@
 #define SPEC_ENV_NEE 1
 #define SPEC_EMITTERS 2
 #define SPEC_MOTION_BLUR 3
-#define SPEC_SPATIAL_LIST 4     // restir_spatial.comp: this dispatch runs the list
 #define SPEC_SPATIAL_COMPACT 5  // restir_spatial.comp: pixels that draw neighbours at random go to that list
 #define SPEC_SPATIAL_PAIRS 6    // restir_spatial.comp: the first two neighbours are the frame's pair (restir/spatial_pairs.glsl)
 #define SPEC_DOMAIN_LIST 7      // this dispatch runs a list of active deep domains (initial, splat_resample: this frame's; domain_propagate, splat_project: the previous frame's)

@@ -22,6 +22,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "restir/thresholds.h"
 #include "restir/centre_surface.glsl"
 #include "restir/layer_data.h"
+#include "restir/spatial_pair_data.h"
 
 layout(set = 0, binding = BINDING_RESERVOIRS_IN, std430) readonly buffer ReservoirsIn { PackedReservoir b_in[]; };
 layout(set = 0, binding = BINDING_PRIMARY, std430) readonly buffer Primary { GpuPrimaryHit b_primary[]; };
@@ -30,10 +31,10 @@ layout(set = 0, binding = BINDING_DOMAINS, std430) readonly buffer Domains { Gpu
 // disocclusion_spatial_neighbors; with pairs: every pixel whose pair does not fill its count) trace
 // rays here. Run among the others, one such pixel holds up every lane of its SIMD group (lavapipe
 // runs 8 pixels in lock-step, a GPU 32), so with k_compact the image dispatch only lists them, and a
-// second, indirect dispatch (k_list) runs the list densely. A pixel's result is the same either way:
-// its random streams are keyed by the pixel.
-layout(constant_id = SPEC_SPATIAL_LIST) const bool k_list = false;
+// second, indirect dispatch runs the list densely. A pixel's result is the same either way:
+// its random streams are keyed by the pixel. The same pipeline runs both dispatches (u_dispatch.list).
 layout(constant_id = SPEC_SPATIAL_COMPACT) const bool k_compact = false;
+layout(push_constant) uniform Dispatch { SpatialDispatch u_dispatch; };
 layout(set = 0, binding = BINDING_SPATIAL_LIST, std430) buffer SpatialList { uint b_list[]; };
 // x, y, z: the list dispatch's workgroups (y = z = 1, set by the host); w: the list's length.
 layout(set = 0, binding = BINDING_SPATIAL_ARGS, std430) buffer SpatialArgs { uvec4 b_args; };
@@ -115,7 +116,8 @@ void mark_colour_window(uvec2 pixel, SpatialNeighbours n) {
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (k_list) {
+  const bool list = u_dispatch.list != 0u;
+  if (list) {
     uint item = gl_WorkGroupID.x * (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + gl_LocalInvocationIndex;
     if (item >= b_args.w) return;
     pixel = uvec2(b_list[item] % u_frame.width, b_list[item] / u_frame.width);
@@ -154,7 +156,7 @@ void main() {
   spatial_pair_offsets(o_pair);
   find_pair_neighbours(pixel, here, o_pair, slots, nbs);
   bool list_it = pairs ? nbs.count < slots : no_history;
-  if (k_compact && !k_list && list_it && (b_primary[pixel_index(pixel)].flags & PRIMARY_HIT) != 0u) {
+  if (k_compact && !list && list_it && (b_primary[pixel_index(pixel)].flags & PRIMARY_HIT) != 0u) {
     uint item = atomicAdd(b_args.w, 1u);
     b_list[item] = pixel_index(pixel);
     atomicMax(b_args.x, item / (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + 1u);

@@ -16,5 +16,12 @@ struct PairShift {
   uvec4 meta;        // replay density of T(y) (f32 bits), x1's LoD, 0, 0
 };
 
+// The spatial pass's push constant (restir_spatial.comp): list = 1 in the indirect dispatch that
+// runs the pixels the image dispatch listed (SPEC_SPATIAL_COMPACT), 0 in the image dispatch. One
+// pipeline serves both.
+struct SpatialDispatch {
+  uint list;
+};
+
 STRATA_NAMESPACE_END
 #endif

@@ -6,8 +6,10 @@ viewer and first frames"), with Mesa's shader cache in a given folder (an empty 
         [--size 256] [--frames 400] [--serve-arg=--no-progressive-start ...]
 
 Prints the seconds to the first frame, to the first frame of the method asked for (with a progressive
-start, the frame after its pipelines compiled), stratad's CPU seconds up to then, the load average,
-and stratad's log. Stops both processes once the method's first frame is in (or the stream ends).
+start, the frame after its first-frame pipelines compiled), to its first frame with history (where the
+progressive start held its history passes: the frame after theirs compiled), stratad's CPU seconds up
+to then, the load average, and stratad's log. Stops both processes once that frame is in (or the
+stream ends).
 """
 import argparse
 import json
@@ -52,7 +54,7 @@ def main():
                                "--method", a.method, "--width", str(a.size), "--height", str(a.size), "--frames",
                                str(a.frames), "--encodings", "exr,png", "--out", str(out), "--timeout", "900"],
                               stdout=open(work / "stream.log", "w"), stderr=subprocess.STDOUT, env=env)
-    t_first = t_method = None
+    t_first = t_method = t_history = None
     def frames_seen():
         return len(list(out.glob("frame_*.png"))) if out.exists() else 0
     while stream.poll() is None:
@@ -68,7 +70,13 @@ def main():
                 switch = int(text.split(" renders from frame ")[1].split()[0])
                 if n > switch:
                     t_method = time.monotonic() - t0
-        if t_method is not None:
+        if t_method is not None and t_history is None:
+            if "its history passes held" not in text:
+                t_history = t_method
+            elif " reuse history from frame " in text:
+                if n > int(text.split(" reuse history from frame ")[1].split()[0]):
+                    t_history = time.monotonic() - t0
+        if t_history is not None:
             break
         time.sleep(0.02)
     cpu = None
@@ -87,7 +95,8 @@ def main():
         serve.kill()
         serve.wait()
     result = {"listen_s": round(t_listen, 2), "first_frame_s": t_first and round(t_first, 2),
-              "method_first_frame_s": t_method and round(t_method, 2), "stratad_cpu_s_then": cpu,
+              "method_first_frame_s": t_method and round(t_method, 2),
+              "method_history_frame_s": t_history and round(t_history, 2), "stratad_cpu_s_then": cpu,
               "frames": frames_seen(), "loadavg_before": load, "loadavg_after": os.getloadavg()}
     print((work / "stratad.log").read_text())
     print((work / "stream.log").read_text()[-3000:])

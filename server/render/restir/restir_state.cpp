@@ -51,6 +51,11 @@ gpu::GpuRestirConstants make_constants(const RenderSettings& s, const MethodSpec
 
 }  // namespace
 
+std::string no_history_reason(bool held) {
+  if (held) return "held: its pipelines are compiling in the background, so each frame's reuse starts afresh until they are done";
+  return "no previous frame yet";
+}
+
 std::string suffix_decision(Suffix suffix_option, bool scene_moved, uint32_t changed_instances) {
   if (!scene_moved) return "suffixes kept (nothing moved)";
   if (suffix_option == Suffix::fail) return "suffixes refused (suffix fail: the scene changed)";

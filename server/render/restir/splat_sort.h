@@ -30,6 +30,7 @@ struct SplatLists {
   uint32_t allocated_partitions = 0;
   uint32_t generation = 0;  // bumped when the records were reallocated (passes that bind them rebind)
   bool ran = false;         // a previous frame existed: the sort ran and its lists are this frame's
+  bool held = false;        // it did not run because the history passes are held (MethodFrame::history_held)
   uint32_t partitions = 1;  // K of this frame
 };
 

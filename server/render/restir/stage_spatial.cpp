@@ -5,8 +5,9 @@
 // are the frame's pair (restir/spatial_pairs.glsl), shifted both ways once by a pass before
 // (restir_spatial_pairs.comp). Pixels without history take disocclusion_spatial_neighbors; the
 // pixels that draw neighbours at random (those, or with pairs every pixel whose pair leaves its
-// count short) are only listed by the image dispatch and an indirect dispatch runs the list
-// densely (no SIMD group waits on one such pixel).
+// count short) are only listed by the image dispatch and an indirect dispatch of the same pipeline
+// runs the list densely (no SIMD group waits on one such pixel); a push constant tells the two
+// apart, so that one pipeline is compiled for both.
 #include <algorithm>
 #include <cstdio>
 
@@ -35,9 +36,8 @@ bool compacts(const RestirOptions& o) {
   return pairs(o) || (o.disocclusion_spatial_neighbors != 0 && o.disocclusion_spatial_neighbors != o.spatial_neighbors);
 }
 
-std::vector<gpu::SpecConstant> spatial_spec(bool list, bool compact, uint32_t pair_offsets) {
-  return {{SPEC_SPATIAL_LIST, list ? VK_TRUE : VK_FALSE},
-          {SPEC_SPATIAL_COMPACT, compact ? VK_TRUE : VK_FALSE},
+std::vector<gpu::SpecConstant> spatial_spec(bool compact, uint32_t pair_offsets) {
+  return {{SPEC_SPATIAL_COMPACT, compact ? VK_TRUE : VK_FALSE},
           {SPEC_SPATIAL_PAIRS, pair_offsets}};
 }
 
@@ -55,13 +55,10 @@ class SpatialStage : public Stage {
         pair_shifts_(device_storage(state.shared.ctx, sizeof(gpu::PairShift) * (pairs_ ? 2 * pair_offsets_ * state.pixels : 1),
                                     "spatial pair shifts")),
         pass_(state.shared.ctx, &state.shared.scene, SceneUse{}, "restir_spatial", resources(Access::read),
-              spatial_spec(false, compact_, pair_offsets_)) {
+              spatial_spec(compact_, pair_offsets_), sizeof(gpu::SpatialDispatch)) {
     if (pairs_)
       pairs_pass_ = std::make_unique<Pass>(state.shared.ctx, &state.shared.scene, SceneUse{}, "restir_spatial_pairs",
-                                           resources(Access::write), spatial_spec(false, false, pair_offsets_));
-    if (compact_)
-      list_pass_ = std::make_unique<Pass>(state.shared.ctx, &state.shared.scene, SceneUse{}, "restir_spatial",
-                                          resources(Access::read), spatial_spec(true, true, pair_offsets_));
+                                           resources(Access::write), spatial_spec(false, pair_offsets_));
   }
   uint32_t timed_passes() const override { return 1; }
   void record(const StageFrame& f) override {
@@ -75,10 +72,11 @@ class SpatialStage : public Stage {
         pairs_pass_->dispatch_2d(f.cmd, f.parity, state_.width, state_.height);
         gpu::compute_barrier(f.cmd);
       }
-      pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height);
+      const gpu::SpatialDispatch image{0}, list{1};
+      pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height, &image);
       if (compact_) {
         gpu::compute_barrier(f.cmd);
-        list_pass_->dispatch_indirect(f.cmd, f.parity, args_);
+        pass_.dispatch_indirect(f.cmd, f.parity, args_, 0, &list);
       }
     });
   }
@@ -136,7 +134,6 @@ class SpatialStage : public Stage {
   gpu::Buffer pair_shifts_;
   Pass pass_;
   std::unique_ptr<Pass> pairs_pass_;  // the pair shifts (pairs_ only)
-  std::unique_ptr<Pass> list_pass_;   // the list of pixels that draw neighbours at random (compact_ only)
 };
 
 }  // namespace

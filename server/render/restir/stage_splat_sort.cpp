@@ -4,6 +4,7 @@
 #include "include/frame_data.h"
 #include "render/frame_constants.h"
 #include "render/restir/restir_state.h"
+#include "render/restir/stages.h"
 #include "restir/splat_data.h"
 
 namespace strata::render {
@@ -62,6 +63,7 @@ void SplatSortStage::allocate_records(uint32_t partitions) {
 
 void SplatSortStage::record(const StageFrame& f) {
   lists_.ran = f.frame.history_valid;
+  lists_.held = f.frame.history_held;
   if (!lists_.ran) return;
   // K of this frame (RS-main Eq. 19), as the passes read it from the frame constants.
   lists_.partitions = time_partitions(f.frame.frame, state_.settings.restir.splats_per_frame);
@@ -84,7 +86,7 @@ void SplatSortStage::record(const StageFrame& f) {
 }
 
 PassDecision SplatSortStage::decision() const {
-  if (!lists_.ran) return {"splat_sort", false, "no previous frame yet"};
+  if (!lists_.ran) return {"splat_sort", false, no_history_reason(lists_.held)};
   return {"splat_sort", true,
           "counting sort of the previous reservoirs' forward splats" +
               (lists_.partitions > 1 ? " over " + std::to_string(lists_.partitions) + " time partitions" : std::string()) +

@@ -21,6 +21,7 @@ class TemporalGatherStage : public Stage {
   uint32_t timed_passes() const override { return 1; }
   void record(const StageFrame& f) override {
     ran_ = f.frame.history_valid;
+    held_ = f.frame.history_held;
     moved_ = f.frame.scene_moved;
     changed_ = state_.shared.scene.changed_instances();
     if (!ran_) return;
@@ -28,7 +29,7 @@ class TemporalGatherStage : public Stage {
   }
   PassDecision decision() const override {
     const RestirOptions& o = state_.settings.restir;
-    if (!ran_) return {"temporal", false, "no previous frame yet"};
+    if (!ran_) return {"temporal", false, no_history_reason(held_)};
     return {"temporal", true,
             "gather, " + options::choice_name("shift", o.shift) + " shift, " + (o.unbiased ? "reverse-shift MIS" : "confidence weights (biased)") + "; " +
                 suffix_decision(o.suffix, moved_, changed_)};
@@ -38,6 +39,7 @@ class TemporalGatherStage : public Stage {
   const RestirState& state_;
   Pass pass_;
   bool ran_ = false;
+  bool held_ = false;
   bool moved_ = false;
   uint32_t changed_ = 0;  // instances that changed since the previous frame
 };

@@ -62,7 +62,7 @@ class TemporalSplatStage : public Stage {
   }
 
   PassDecision decision() const override {
-    if (!sorted_.ran) return {"temporal", false, "no previous frame yet"};
+    if (!sorted_.ran) return {"temporal", false, no_history_reason(sorted_.held)};
     const uint32_t k = sorted_.partitions;
     return {"temporal", true,
             std::string(state_.spec.backup ? "splat with backup sample" : "splat") + " (counting sort; reprojection + " +

@@ -31,6 +31,10 @@ std::unique_ptr<Stage> make_spatial_stage(const RestirState& state);
 // shade: the last resampling's estimate and the directly seen emission into the image (restir_shade); contribution -> accum.
 std::unique_ptr<Stage> make_shade_stage(const RestirState& state);
 
+// Why a history pass did not run this frame: no previous frame yet, or its pipelines still compile
+// (MethodFrame::history_held).
+std::string no_history_reason(bool held);
+
 // What the temporal stage did with path suffixes this frame (option `suffix`; `changed_instances`:
 // the swept boxes of GpuScene, which suffix auto tests a one-segment suffix against).
 std::string suffix_decision(Suffix suffix_option, bool scene_moved, uint32_t changed_instances);
