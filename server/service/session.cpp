@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <thread>
 #include <glm/glm.hpp>
 
 #include "include/frame_data.h"
@@ -28,6 +29,13 @@ std::string seconds_text(double s) {
 // The method that renders a progressive start's frames until the session's own is compiled: its
 // pipelines compile in about a second on lavapipe.
 constexpr const char* k_stand_in = "pt";
+// While the method compiles, the stand-in's frames are paced: after a frame that took r, the next
+// starts no sooner than k_stand_in_idle x r later, so that rendering them takes about a quarter of
+// the machine and the compile (which the method's first frame waits for) the rest. Unpaced, a
+// 256x256 carousel session's pt frames took about half of a 2-core machine and the method's first
+// frame came 42 s after the start instead of within 30 s (docs/BENCHMARKS.md, "Live viewer and
+// first frames").
+constexpr double k_stand_in_idle = 3.0;
 
 void set_time(google::protobuf::Timestamp* t, std::chrono::system_clock::time_point tp) {
   const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(tp.time_since_epoch()).count();
@@ -305,18 +313,23 @@ RenderedFrame Session::render(PendingInput input) {
   // before; the session's first frame has none and is an instant.
   frame_state_.camera_open = last_camera_ ? scene::shutter_open_camera(*last_camera_, frame_state_.camera) : std::nullopt;
 
+  if (compiling && stand_in_resume_ > Clock::now()) std::this_thread::sleep_until(stand_in_resume_);
+  const auto render_start = Clock::now();
   RenderedFrame f;
   f.result = calibrating  ? render_calibrating_locked(index, option_changes)
              : compiling ? stand_in_->render(frame_state_, uint32_t(index))
                          : renderer_->render(frame_state_, uint32_t(index));
   if (compiling) {
+    const auto rendered = Clock::now();
+    stand_in_resume_ = rendered + std::chrono::duration_cast<Clock::duration>((rendered - render_start) * k_stand_in_idle);
     const size_t n = compile_->pipelines();
     f.result.stats.passes.insert(
         f.result.stats.passes.begin(),
         {settings_.method, false,
          settings_.method + " compiling: rendered by " + k_stand_in + " (" + (n ? std::to_string(n) + " pipelines" : std::string("its pipelines")) +
              " compiling in the background for " + seconds_text(compile_->seconds()) + "; " + settings_.method +
-             " renders from the frame after they are compiled, its history starting there)"});
+             " renders from the frame after those of a frame without history are compiled, its history starting there; "
+             "these frames are paced to leave most of the machine to the compile)"});
   }
   last_camera_ = frame_state_.camera;
   const auto done = Clock::now();

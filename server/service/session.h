@@ -148,6 +148,7 @@ class Session {
   std::shared_ptr<const PipelineCompile> compile_;
   std::unique_ptr<render::Renderer> stand_in_;
   bool history_held_ = false;  // the method renders, its history passes held until compiled
+  Clock::time_point stand_in_resume_{};  // the stand-in's next frame starts no sooner (k_stand_in_idle)
 
   // Description and counters: guarded by mu_ (taken after render_mu_ when both are needed).
   mutable std::mutex mu_;
