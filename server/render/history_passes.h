@@ -12,7 +12,7 @@ namespace strata::render {
 inline bool history_only_shader(std::string_view shader) {
   constexpr std::string_view textured = "_textured";  // GpuScene::shader's variant of the same pass
   if (shader.ends_with(textured)) shader.remove_suffix(textured.size());
-  return shader == "restir_temporal" ||                                          // restir-gather, restir-di
+  return shader == "restir_temporal" || shader == "restir_temporal_reverse" ||  // restir-gather, restir-di
          shader == "restir_splat_project" || shader == "restir_splat_scan" ||    // the splat methods' counting sort
          shader == "restir_splat_insert" || shader == "restir_splat_resample" ||
          shader == "domain_propagate";                                           // restir-multilayer's propagated domains

@@ -54,6 +54,7 @@
 #define BINDING_TEXELS 43             // RGBA8 texels of every level
 #define BINDING_VERTEX_EXTRAS 44      // per vertex: GpuVertexExtra (tangent, TEXCOORD_1), or one unused record
 #define BINDING_LIGHT_EMISSION 45     // per triangle (index array / 3): the emission NEE selects it by (scenes with emissive textures)
+#define BINDING_TEMPORAL_FROM_Q 46     // per pixel: p-hat from q of the canonical sample (restir_temporal_reverse -> restir_temporal)
 
 // Specialization constants of the passes (constant_id).
 #define SPEC_THIN_LENS 0
