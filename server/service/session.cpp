@@ -30,13 +30,13 @@ std::string seconds_text(double s) {
 // pipelines compile in about a second on lavapipe.
 constexpr const char* k_stand_in = "pt";
 // While the method compiles, the stand-in's frames are paced: after a frame that took r, the next
-// starts no sooner than k_stand_in_idle x r later (at most k_stand_in_idle_max), so that rendering them takes about a quarter of
+// starts no sooner than k_stand_in_idle x r later, so that rendering them takes about a quarter of
 // the machine and the compile (which the method's first frame waits for) the rest. Unpaced, a
 // 256x256 carousel session's pt frames took about half of a 2-core machine and the method's first
 // frame came 42 s after the start instead of within 30 s (docs/BENCHMARKS.md, "Live viewer and
-// first frames").
+// first frames"). At most k_stand_in_idle_max later, so that a frame that included pt's own
+// compile (the first) does not hold up the next for long.
 constexpr double k_stand_in_idle = 3.0;
-// At most this long, so that a frame that included pt's own compile (the first) does not hold up the next.
 constexpr std::chrono::seconds k_stand_in_idle_max{2};
 
 void set_time(google::protobuf::Timestamp* t, std::chrono::system_clock::time_point tp) {
