@@ -65,7 +65,6 @@ class Renderer {
   // them until their pipelines are compiled (service/warm_up.h). Releasing it needs no reset: the
   // previous frame's reservoirs and scene slot are kept every frame.
   void hold_history(bool held) { history_held_ = held; }
-  bool history_held() const { return history_held_; }
 
   // The last rendered frame's domain map (restir-multilayer; none for methods without pixel layers).
   std::optional<DomainMap> domain_map() const;

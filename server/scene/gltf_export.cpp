@@ -197,13 +197,35 @@ void add_animation(GlbBuilder& b, const Scene& s, int camera_node, const std::ve
   if (!animation.channels.empty()) b.model().animations.push_back(std::move(animation));
 }
 
+// Which of `count` targets (instances or lights) have a track with keys; `target` names a track's.
+template <class Track, class Target>
+std::vector<bool> animated_targets(const std::vector<Track>& tracks, size_t count, Target target) {
+  std::vector<bool> animated(count, false);
+  for (const Track& track : tracks)
+    if (target(track) < count && !track.keys.empty()) animated[target(track)] = true;
+  return animated;
+}
+
+// A node's rest transform: TRS where the node is animated (glTF forbids `matrix` on animated
+// nodes; the exact matrix then rides in extras), else the matrix.
+void set_rest_transform(tinygltf::Node& node, const glm::mat4& transform, bool animated) {
+  if (animated) {
+    const TransformKey trs = decompose_trs(transform);
+    node.translation = doubles({trs.translation.x, trs.translation.y, trs.translation.z});
+    node.rotation = doubles({trs.rotation.x, trs.rotation.y, trs.rotation.z, trs.rotation.w});
+    node.scale = doubles({trs.scale.x, trs.scale.y, trs.scale.z});
+    return;
+  }
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) node.matrix.push_back(transform[c][r]);
+  }
+}
+
 // Returns the node of each punctual light.
 std::vector<int> add_nodes(GlbBuilder& b, const Scene& s) {
   tinygltf::Model& m = b.model();
-  std::vector<bool> animated(s.instances.size(), false);
-  for (const InstanceTrack& track : s.animation.tracks) {
-    if (track.instance < animated.size() && !track.keys.empty()) animated[track.instance] = true;
-  }
+  const std::vector<bool> animated =
+      animated_targets(s.animation.tracks, s.instances.size(), [](const InstanceTrack& t) { return size_t(t.instance); });
   tinygltf::Scene scene;
   scene.name = s.name;
   scene.extras = gltf::scene_extras(s);
@@ -212,16 +234,7 @@ std::vector<int> add_nodes(GlbBuilder& b, const Scene& s) {
     tinygltf::Node node;
     node.name = instance.name;
     node.mesh = static_cast<int>(instance.lod_meshes[0]);
-    if (animated[i]) {
-      const TransformKey trs = decompose_trs(instance.transform);
-      node.translation = doubles({trs.translation.x, trs.translation.y, trs.translation.z});
-      node.rotation = doubles({trs.rotation.x, trs.rotation.y, trs.rotation.z, trs.rotation.w});
-      node.scale = doubles({trs.scale.x, trs.scale.y, trs.scale.z});
-    } else {
-      for (int c = 0; c < 4; ++c) {
-        for (int r = 0; r < 4; ++r) node.matrix.push_back(instance.transform[c][r]);
-      }
-    }
+    set_rest_transform(node, instance.transform, animated[i]);
     node.extras = gltf::node_extras(instance, animated[i]);
     m.nodes.push_back(node);
     scene.nodes.push_back(static_cast<int>(i));
@@ -257,9 +270,8 @@ std::vector<int> add_nodes(GlbBuilder& b, const Scene& s) {
     b.use_extension(kLodExtension);
   }
   std::vector<int> light_nodes;
-  std::vector<bool> animated_lights(s.lights.size(), false);
-  for (const LightTrack& track : s.animation.light_tracks)
-    if (track.light < animated_lights.size() && !track.keys.empty()) animated_lights[track.light] = true;
+  const std::vector<bool> animated_lights =
+      animated_targets(s.animation.light_tracks, s.lights.size(), [](const LightTrack& t) { return size_t(t.light); });
   for (size_t i = 0; i < s.lights.size(); ++i) {
     const Light& light = s.lights[i];
     tinygltf::Light out;
@@ -275,17 +287,8 @@ std::vector<int> add_nodes(GlbBuilder& b, const Scene& s) {
     m.lights.push_back(out);  // tinygltf writes them as KHR_lights_punctual and lists the extension
     tinygltf::Node node;
     node.name = light.name;
-    if (animated_lights[i]) {
-      const TransformKey trs = decompose_trs(light.transform);
-      node.translation = doubles({trs.translation.x, trs.translation.y, trs.translation.z});
-      node.rotation = doubles({trs.rotation.x, trs.rotation.y, trs.rotation.z, trs.rotation.w});
-      node.scale = doubles({trs.scale.x, trs.scale.y, trs.scale.z});
-      node.extras = gltf::light_node_extras(light.transform);
-    } else {
-      for (int c = 0; c < 4; ++c) {
-        for (int r = 0; r < 4; ++r) node.matrix.push_back(light.transform[c][r]);
-      }
-    }
+    set_rest_transform(node, light.transform, animated_lights[i]);
+    if (animated_lights[i]) node.extras = gltf::light_node_extras(light.transform);
     node.extensions["KHR_lights_punctual"] =
         tinygltf::Value(tinygltf::Value::Object{{"light", tinygltf::Value(static_cast<int>(i))}});
     m.nodes.push_back(node);
