@@ -137,9 +137,15 @@ static void check_png_chunks(std::span<const uint8_t> bytes) {
 
 static void check_hdr_runs(std::span<const uint8_t> bytes, const ImageSize& size) {
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-  const size_t blank = text.find("\n\n");
-  if (blank == std::string_view::npos) return;  // stb refuses a header without its blank line
-  const size_t resolution_end = text.find('\n', blank + 2);
+  // The header ends where stb ends it: at the first line after the signature that is empty or
+  // starts with a NUL byte (stb reads the line into a C string).
+  size_t line = text.find('\n');
+  while (line != std::string_view::npos && line + 1 < text.size() && text[line + 1] != '\n' && text[line + 1] != '\0')
+    line = text.find('\n', line + 1);
+  if (line == std::string_view::npos || line + 1 >= text.size()) return;  // stb refuses a header without its blank line
+  const size_t blank = text.find('\n', line + 1);  // the end of the blank line
+  if (blank == std::string_view::npos) return;
+  const size_t resolution_end = text.find('\n', blank + 1);
   if (resolution_end == std::string_view::npos) return;
   size_t at = resolution_end + 1;
   const uint32_t width = size.width;
