@@ -127,10 +127,12 @@ SceneTextures::SceneTextures(const gpu::Context& ctx, const scene::Scene& scene)
   std::vector<gpu::GpuMaterialTextures> mats;
   for (const auto& m : scene.materials) {
     gpu::GpuMaterialTextures g{};
-    g.base_color = texture_ref(m.base_color_texture);
-    g.metallic_roughness = texture_ref(m.metallic_roughness_texture);
-    g.normal = texture_ref(m.normal_texture);
-    g.emissive = texture_ref(m.emissive_texture);
+    g.slots[gpu::MATERIAL_TEXTURE_BASE_COLOR] = texture_ref(m.base_color_texture);
+    g.slots[gpu::MATERIAL_TEXTURE_METALLIC_ROUGHNESS] = texture_ref(m.metallic_roughness_texture);
+    g.slots[gpu::MATERIAL_TEXTURE_EMISSIVE] = texture_ref(m.emissive_texture);
+    g.slots[gpu::MATERIAL_TEXTURE_NORMAL] = texture_ref(m.normal_texture);
+    for (uint32_t k = 0; k < gpu::MATERIAL_TEXTURE_SLOTS; ++k)
+      if (g.slots[k].texture >= 0) g.textures |= 1u << k;
     g.alpha = m.alpha;
     // BLEND is rendered as MASK at 0.5 (docs/ARCHITECTURE.md, "glTF content").
     g.alpha_mode = alpha_tested(m) ? gpu::ALPHA_MASK : gpu::ALPHA_OPAQUE;

@@ -120,18 +120,18 @@ SurfaceHit load_hit_with(GpuInstance inst, RayHit h) {
   float nl = length(n);
   s.shading_normal = nl > 0.0 && !isnan(nl) ? n / nl : s.geo_normal;
 #ifdef STRATA_TEXTURES
-  GpuMaterialTextures mt = b_material_textures[prim.material];
   s.uv = vec4(0.0);
   s.uv_density = vec2(0.0);
   s.triangle_index = prim.index_offset / 3u + h.triangle;
-  if (material_textured(mt)) {  // an untextured material in a textured scene reads no texCoords
+  uint textures = b_material_textures[prim.material].textures;
+  if (textures != 0u) {  // an untextured material in a textured scene reads no texCoords
     vec4 t0;
     vec4 t1;
     vec4 t2;
-    vertex_texcoords(v0, v1, v2, prim, h.triangle, mt.flags, t0, t1, t2);
+    vertex_texcoords(v0, v1, v2, prim, h.triangle, b_material_textures[prim.material].flags, t0, t1, t2);
     s.uv = interpolate_texcoords(t0, t1, t2, h.bary);
     s.uv_density = texcoord_density(t0, t1, t2, s.area);
-    if (mt.normal.texture >= 0) s.shading_normal = normal_mapped(inst, prim, mt, h, p0, p1, p2, t0, t1, t2, s);
+    if ((textures & (1u << MATERIAL_TEXTURE_NORMAL)) != 0u) s.shading_normal = normal_mapped(inst, prim, prim.material, h, p0, p1, p2, t0, t1, t2, s);
   }
 #endif
   if (dot(s.shading_normal, s.geo_normal) < 0.0) s.shading_normal = -s.shading_normal;
@@ -193,25 +193,27 @@ float primary_footprint(float spread, vec3 position, float cos_in) {
 SurfaceMaterial material_at(SurfaceHit s, float footprint) {
 #ifdef STRATA_TEXTURES
   GpuMaterial m = b_materials[s.material];
-  GpuMaterialTextures t = b_material_textures[s.material];
   vec3 base = m.base_color_metallic.rgb;
   float metallic = m.base_color_metallic.a;
   float roughness = m.emission_roughness.a;
   vec3 emission = m.emission_roughness.rgb;
-  // The material's textures (0 base colour, 1 metallic-roughness, 2 emissive) in one loop over
-  // those it has, so that each call site of material_at holds one lookup (textures.glsl).
-  for (uint k = next_material_texture(t, 0u); k < 3u; k = next_material_texture(t, k + 1u)) {
-    GpuTextureRef r = k == 0u ? t.base_color : (k == 1u ? t.metallic_roughness : t.emissive);
-    vec4 c = sample_texture_ref(r, s.uv, s.uv_density, footprint, false);
-    if (k == 0u) base *= c.rgb;
-    if (k == 1u) {
+  // The material's shading textures (base colour, metallic-roughness, emissive) in one loop over
+  // those it has, each texture reference read in place from the buffer by its slot: each call site
+  // of material_at then holds one lookup and one load of a reference, whose code lavapipe compiles
+  // at every site (textures.glsl).
+  uint textures = b_material_textures[s.material].textures;
+  for (uint left = textures & MATERIAL_SHADING_TEXTURES; left != 0u; left &= left - 1u) {
+    uint k = uint(findLSB(left));
+    vec4 c = sample_texture_ref(b_material_textures[s.material].slots[k], s.uv, s.uv_density, footprint, false);
+    if (k == MATERIAL_TEXTURE_BASE_COLOR) base *= c.rgb;
+    if (k == MATERIAL_TEXTURE_METALLIC_ROUGHNESS) {
       roughness *= c.g;
       metallic *= c.b;
     }
-    if (k == 2u) emission *= c.rgb;
+    if (k == MATERIAL_TEXTURE_EMISSIVE) emission *= c.rgb;
   }
   vec3 light_emission = m.emission_roughness.rgb;
-  if (t.emissive.texture >= 0) light_emission = b_light_emission[s.triangle_index].rgb;
+  if ((textures & (1u << MATERIAL_TEXTURE_EMISSIVE)) != 0u) light_emission = b_light_emission[s.triangle_index].rgb;
   SurfaceMaterial r;
   r.bsdf = make_bsdf(base, metallic, roughness, m.specular);
   r.metallic = metallic;
@@ -232,13 +234,12 @@ SurfaceMaterial material_at(SurfaceHit s, float footprint) {
 vec3 emitter_radiance(bool prev, vec3 table_emission, uint instance, uint geometry, uint triangle, vec2 bary) {
 #ifdef STRATA_TEXTURES
   GpuPrimitive prim = b_primitives[instance_in(prev, instance).primitive_base + geometry];
-  GpuMaterialTextures t = b_material_textures[prim.material];
-  if (t.emissive.texture < 0) return table_emission;
+  if ((b_material_textures[prim.material].textures & (1u << MATERIAL_TEXTURE_EMISSIVE)) == 0u) return table_emission;
   vec4 t0;
   vec4 t1;
   vec4 t2;
-  triangle_texcoords(prim, t.flags, triangle, t0, t1, t2);
-  vec4 texel = sample_texture_ref(t.emissive, interpolate_texcoords(t0, t1, t2, bary), vec2(0.0), 0.0, false);
+  triangle_texcoords(prim, b_material_textures[prim.material].flags, triangle, t0, t1, t2);
+  vec4 texel = sample_texture_ref(b_material_textures[prim.material].slots[MATERIAL_TEXTURE_EMISSIVE], interpolate_texcoords(t0, t1, t2, bary), vec2(0.0), 0.0, false);
   return b_materials[prim.material].emission_roughness.rgb * texel.rgb;
 #else
   return table_emission;
@@ -354,13 +355,12 @@ SurfaceHit primary_surface_hit(bool prev, GpuPrimaryHit p) {
   s.triangle_index = 0u;
   if ((p.flags & PRIMARY_HIT) != 0u) {
     GpuPrimitive prim = b_primitives[instance_in(prev, p.instance).primitive_base + p.geometry];
-    GpuMaterialTextures mt = b_material_textures[prim.material];
     s.triangle_index = prim.index_offset / 3u + p.triangle;
-    if (material_textured(mt)) {
+    if (material_textured(prim.material)) {
       vec4 t0;
       vec4 t1;
       vec4 t2;
-      triangle_texcoords(prim, mt.flags, p.triangle, t0, t1, t2);
+      triangle_texcoords(prim, b_material_textures[prim.material].flags, p.triangle, t0, t1, t2);
       s.uv = interpolate_texcoords(t0, t1, t2, p.bary);
       s.uv_density = texcoord_density(t0, t1, t2, s.area);
     }

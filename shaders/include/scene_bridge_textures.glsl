@@ -31,20 +31,9 @@ void triangle_texcoords(GpuPrimitive prim, uint flags, uint triangle, out vec4 t
                    b_vertices[prim.vertex_offset + b_indices[base + 2u]], prim, triangle, flags, t0, t1, t2);
 }
 
-// The first of a material's textures k, k + 1, ... below 3 (0 base colour, 1 metallic-roughness,
-// 2 emissive) that it has; 3 when none.
-uint next_material_texture(GpuMaterialTextures m, uint k) {
-  if (k == 0u && m.base_color.texture >= 0) return 0u;
-  if (k <= 1u && m.metallic_roughness.texture >= 0) return 1u;
-  if (k <= 2u && m.emissive.texture >= 0) return 2u;
-  return 3u;
-}
-
 // Whether a material has a texture (else its texCoords are never read: the alpha test of an
 // untextured material is its factor alone).
-bool material_textured(GpuMaterialTextures m) {
-  return m.base_color.texture >= 0 || m.metallic_roughness.texture >= 0 || m.normal.texture >= 0 || m.emissive.texture >= 0;
-}
+bool material_textured(uint material) { return b_material_textures[material].textures != 0u; }
 
 vec4 interpolate_texcoords(vec4 t0, vec4 t1, vec4 t2, vec2 bary) { return (1.0 - bary.x - bary.y) * t0 + bary.x * t1 + bary.y * t2; }
 
@@ -62,12 +51,11 @@ layout(constant_id = SPEC_ALPHA_TEST) const bool k_alpha_test = false;
 // Whether an alpha-tested candidate of a ray query is a surface (alpha_keeps at its texCoords).
 bool candidate_kept(bool prev, uint instance, uint geometry, uint triangle, vec2 bary) {
   GpuPrimitive prim = b_primitives[instance_in(prev, instance).primitive_base + geometry];
-  GpuMaterialTextures m = b_material_textures[prim.material];
   vec4 t0;
   vec4 t1;
   vec4 t2;
-  triangle_texcoords(prim, m.flags, triangle, t0, t1, t2);
-  return alpha_keeps(m, interpolate_texcoords(t0, t1, t2, bary));
+  triangle_texcoords(prim, b_material_textures[prim.material].flags, triangle, t0, t1, t2);
+  return alpha_keeps(prim.material, interpolate_texcoords(t0, t1, t2, bary));
 }
 
 // Alpha-tested primitives are non-opaque BLAS geometry (gpu/accel.h, BlasTriangles::opaque): with
@@ -89,13 +77,14 @@ bool candidate_kept(bool prev, uint instance, uint geometry, uint triangle, vec2
 // dP/du of the triangle in the normal texture's texCoord set, with the bitangent on the side of
 // -dP/dv (glTF's green channel points towards decreasing v). Falls back to the interpolated normal
 // where the frame degenerates.
-vec3 normal_mapped(GpuInstance inst, GpuPrimitive prim, GpuMaterialTextures mt, RayHit h, vec3 p0, vec3 p1, vec3 p2, vec4 t0,
+vec3 normal_mapped(GpuInstance inst, GpuPrimitive prim, uint material, RayHit h, vec3 p0, vec3 p1, vec3 p2, vec4 t0,
                    vec4 t1, vec4 t2, SurfaceHit s) {
   vec3 n = s.shading_normal;
   vec3 t = vec3(0.0);
   float sign = 1.0;
   bool have = false;
-  if ((mt.flags & MATERIAL_VERTEX_EXTRAS) != 0u) {
+  GpuTextureRef r = b_material_textures[material].slots[MATERIAL_TEXTURE_NORMAL];
+  if ((b_material_textures[material].flags & MATERIAL_VERTEX_EXTRAS) != 0u) {
     uint base = prim.index_offset + 3u * h.triangle;
     vec4 a0 = b_vertex_extras[prim.vertex_offset + b_indices[base]].tangent;
     vec4 a1 = b_vertex_extras[prim.vertex_offset + b_indices[base + 1u]].tangent;
@@ -109,8 +98,8 @@ vec3 normal_mapped(GpuInstance inst, GpuPrimitive prim, GpuMaterialTextures mt, 
     }
   }
   if (!have) {
-    vec2 d1 = mt.normal.tex_coord == 1u ? (t1 - t0).zw : (t1 - t0).xy;
-    vec2 d2 = mt.normal.tex_coord == 1u ? (t2 - t0).zw : (t2 - t0).xy;
+    vec2 d1 = r.tex_coord == 1u ? (t1 - t0).zw : (t1 - t0).xy;
+    vec2 d2 = r.tex_coord == 1u ? (t2 - t0).zw : (t2 - t0).xy;
     float det = d1.x * d2.y - d1.y * d2.x;
     if (!(abs(det) > 1e-12)) return n;
     vec3 e1 = p1 - p0;
@@ -124,8 +113,8 @@ vec3 normal_mapped(GpuInstance inst, GpuPrimitive prim, GpuMaterialTextures mt, 
   if (!(tl > 0.0) || isinf(tl)) return n;
   t /= tl;
   vec3 b = cross(n, t) * sign;
-  vec3 m = sample_texture_ref(mt.normal, s.uv, s.uv_density, 0.0, false).xyz * 2.0 - 1.0;
-  m.xy *= mt.normal_scale;
+  vec3 m = sample_texture_ref(r, s.uv, s.uv_density, 0.0, false).xyz * 2.0 - 1.0;
+  m.xy *= b_material_textures[material].normal_scale;
   vec3 mapped = m.x * t + m.y * b + m.z * n;
   float ml = length(mapped);
   return ml > 0.0 && !isinf(ml) ? mapped / ml : n;

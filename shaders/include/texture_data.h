@@ -55,20 +55,30 @@ CONST_DEF uint ALPHA_MASK = 1u;  // glTF MASK, and BLEND rendered as MASK at cut
 // GpuMaterialTextures::flags
 CONST_DEF uint MATERIAL_VERTEX_EXTRAS = 1u;  // the scene's vertices have GpuVertexExtra records
 
-// Per material, beside GpuMaterial (scene_data.h).
+// GpuMaterialTextures::slots: a material's textures by what they hold.
+CONST_DEF uint MATERIAL_TEXTURE_BASE_COLOR = 0u;          // sRGB RGB x base colour factor; alpha x the factor's alpha
+CONST_DEF uint MATERIAL_TEXTURE_METALLIC_ROUGHNESS = 1u;  // B x metallic, G x roughness
+CONST_DEF uint MATERIAL_TEXTURE_EMISSIVE = 2u;            // sRGB RGB x emission
+CONST_DEF uint MATERIAL_TEXTURE_NORMAL = 3u;              // tangent space, xy x normal_scale
+CONST_DEF uint MATERIAL_TEXTURE_SLOTS = 4u;
+// The slots material_at reads (GpuMaterialTextures::textures bits); the normal map is read by the
+// hit's shading normal.
+CONST_DEF uint MATERIAL_SHADING_TEXTURES = (1u << MATERIAL_TEXTURE_BASE_COLOR) | (1u << MATERIAL_TEXTURE_METALLIC_ROUGHNESS) |
+                                           (1u << MATERIAL_TEXTURE_EMISSIVE);
+
+// Per material, beside GpuMaterial (scene_data.h). The shaders read its fields in place
+// (b_material_textures[m].slots[k]), never a copy of the whole record: on lavapipe every load is
+// compiled again at every inlined call site, and a slot indexed at run time is one load.
 struct GpuMaterialTextures {
-  GpuTextureRef base_color;          // sRGB RGB x base colour factor; alpha x the factor's alpha
-  GpuTextureRef metallic_roughness;  // B x metallic, G x roughness
-  GpuTextureRef normal;              // tangent space, xy x normal_scale
-  GpuTextureRef emissive;            // sRGB RGB x emission
+  GpuTextureRef slots[4];            // MATERIAL_TEXTURE_*
   float alpha;                       // baseColorFactor alpha
   float alpha_cutoff;
   uint alpha_mode;                   // ALPHA_*
   float normal_scale;
   uint flags;                        // MATERIAL_VERTEX_EXTRAS
+  uint textures;                     // bit k: slots[k] has a texture
   uint pad0;
   uint pad1;
-  uint pad2;
 };
 
 // Per vertex (the same index as GpuVertex), for scenes whose primitives have a second UV set or

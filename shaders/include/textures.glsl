@@ -121,11 +121,12 @@ vec4 sample_texture_ref(GpuTextureRef r, vec4 uv, vec2 density, float width, boo
 
 // Coverage of an alpha-tested material (alpha factor x base colour texture alpha, the texture read
 // at its finest level: the same test for every ray, in both frames) against its cutoff.
-bool alpha_keeps(GpuMaterialTextures m, vec4 uv) {
-  if (m.alpha_mode != ALPHA_MASK) return true;
-  float a = m.alpha;
-  if (m.base_color.texture >= 0) a *= sample_texture_ref(m.base_color, uv, vec2(0.0), 0.0, true).a;
-  return a >= m.alpha_cutoff;
+bool alpha_keeps(uint material, vec4 uv) {
+  if (b_material_textures[material].alpha_mode != ALPHA_MASK) return true;
+  float a = b_material_textures[material].alpha;
+  if ((b_material_textures[material].textures & (1u << MATERIAL_TEXTURE_BASE_COLOR)) != 0u)
+    a *= sample_texture_ref(b_material_textures[material].slots[MATERIAL_TEXTURE_BASE_COLOR], uv, vec2(0.0), 0.0, true).a;
+  return a >= b_material_textures[material].alpha_cutoff;
 }
 
 #endif
