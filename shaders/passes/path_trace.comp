@@ -98,9 +98,12 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
         vec3 wi = to_local(ls.direction, t, b, ns);
         vec3 f = bsdf_eval_cos(bsdf, wo, wi);
         if (any(greaterThan(f, vec3(0.0)))) {
-          float t_max = isinf(ls.distance) ? RAY_UNBOUNDED : ls.distance * (1.0 - SHADOW_RAY_SHORTEN);
+          vec3 aim = ls.direction;
+          float dist = ls.distance;
+          bool aimed = isinf(dist) || aim_ray(x, s.position + ls.direction * ls.distance, aim, dist);
+          float t_max = isinf(dist) ? RAY_UNBOUNDED : dist * (1.0 - SHADOW_RAY_SHORTEN);
           g_rays_shadow++;
-          if (trace_visible(x, ls.direction, t_max)) {
+          if (aimed && trace_visible(x, aim, t_max)) {
             float w = k_punctual && ls.delta ? 1.0 : mis_power(ls.pdf, bsdf_pdf(bsdf, wo, wi));
             radiance += throughput * f * ls.radiance * (w / ls.pdf);
           }

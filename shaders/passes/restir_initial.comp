@@ -155,9 +155,13 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
       if (!isinf(ls.distance) && ls.cos_light < SHIFT_MIN_COS) continue;
       vec3 fs = scatter(v, ls.direction);
       if (!(luminance(fs) > 0.0)) continue;
-      float t_max = isinf(ls.distance) ? RAY_UNBOUNDED : ls.distance * (1.0 - SHADOW_RAY_SHORTEN);
+      vec3 origin = spawn(v);
+      vec3 aim = ls.direction;
+      float dist = ls.distance;
+      if (!isinf(dist) && !aim_ray(origin, v.position + ls.direction * ls.distance, aim, dist)) continue;
+      float t_max = isinf(dist) ? RAY_UNBOUNDED : dist * (1.0 - SHADOW_RAY_SHORTEN);
       g_rays++;
-      if (!trace_visible(spawn(v), ls.direction, t_max)) continue;
+      if (!trace_visible(origin, aim, t_max)) continue;
       float m = delta ? 1.0 : technique_weight(true, ls.pdf, scatter_pdf(v, ls.direction));
       vec3 f = f_prefix * fs * ls.radiance * m;
       PathSample c = y;

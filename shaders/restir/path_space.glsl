@@ -205,13 +205,17 @@ PathSample shifted_sample(PathSample y, ShiftResult s) {
 // reports short of that band settles it without the second: the closest hit lies no farther.
 bool reconnection_visible(bool prev, Vertex v, vec3 d, float dist, bool to_light, SurfacePoint xk, INOUT(uint) rays) {
   bool to_environment = to_light;
+  vec3 origin = spawn(v);
+  bool punctual_point = k_punctual && to_light && dist > 0.0 && !isinf(dist);  // a point or spot light
+  // Aimed at a point from the spawn origin, and its distance measured from there (aim_ray).
+  if ((!to_light || punctual_point) && !aim_ray(origin, v.position + d * dist, d, dist)) return false;
   for (uint attempt = 0u; attempt < 2u; ++attempt) {
     bool any_hit = attempt == 0u;
     float t_max = to_environment ? RAY_UNBOUNDED : (any_hit ? dist * (1.0 - SHADOW_RAY_SHORTEN) : dist * (1.0 + RECONNECT_SELF_TOLERANCE));
-    if (k_punctual && to_light && dist > 0.0 && !isinf(dist)) t_max = dist * (1.0 - SHADOW_RAY_SHORTEN);  // a point or spot light
+    if (punctual_point) t_max = dist * (1.0 - SHADOW_RAY_SHORTEN);
     RayHit h;
     rays++;
-    bool hit = trace_query_in(prev, spawn(v), d, t_max, any_hit, h);
+    bool hit = trace_query_in(prev, origin, d, t_max, any_hit, h);
     if (any_hit) {
       if (!hit) return true;
       if (to_environment || h.t < dist * (1.0 - RECONNECT_SELF_TOLERANCE)) return false;

@@ -125,10 +125,14 @@ SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {
       beta *= fs;
       r.suffix_density *= pdf;
     }
-    float t_max = light_sample && !isinf(ls.distance) ? ls.distance * (1.0 - SHADOW_RAY_SHORTEN) : RAY_UNBOUNDED;
+    vec3 origin = spawn(v);
+    vec3 aim = dir;  // a light sample's shadow ray is aimed from the origin (aim_ray)
+    float dist = light_sample ? ls.distance : RAY_UNBOUNDED;
+    if (light_sample && !isinf(dist) && !aim_ray(origin, v.position + dir * ls.distance, aim, dist)) return replay_fail(r, SHIFT_FAIL_OCCLUDED);
+    float t_max = light_sample && !isinf(dist) ? dist * (1.0 - SHADOW_RAY_SHORTEN) : RAY_UNBOUNDED;
     RayHit h;
     r.rays++;
-    bool hit = trace_query_in(prev, spawn(v), dir, t_max, light_sample, h);
+    bool hit = trace_query_in(prev, origin, aim, t_max, light_sample, h);
     if (light_sample) {
       if (hit) return replay_fail(r, SHIFT_FAIL_OCCLUDED);
       r.light_pdf_end = ls.pdf;

@@ -29,5 +29,22 @@ INLINE vec3 offset_ray_origin(vec3 p, vec3 n) {
   return vec3(offset_component(p.x, n.x), offset_component(p.y, n.y), offset_component(p.z, n.z));
 }
 
+// The direction and distance from a spawn origin (offset_ray_origin of a surface point) to the
+// point `target` that a visibility ray tests (a point on a light, a reconnection vertex): aimed
+// from the origin itself. Aimed from the surface point instead, a ray started at the offset origin
+// crosses the target's surface short of the target by the offset's share along the target's
+// normal, and where that exceeds SHADOW_RAY_SHORTEN the ray hits the target's own surface: the
+// offset is 256 ulps of the origin's coordinates (about 3e-5 of its distance from the render-space
+// origin, the camera), so next-event estimation missed lights nearer to a surface than about a
+// third of the surface's distance from the camera. False where the target is the origin.
+INLINE bool aim_ray(vec3 origin, vec3 target, OUT(vec3) dir, OUT(float) dist) {
+  vec3 to = target - origin;
+  dist = length(to);
+  dir = vec3(0.0f, 0.0f, 1.0f);
+  if (!(dist > 0.0f) || isinf(dist)) return false;
+  dir = to / dist;
+  return true;
+}
+
 STRATA_NAMESPACE_END
 #endif

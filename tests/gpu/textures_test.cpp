@@ -224,11 +224,7 @@ scene::Scene lit_floor(bool textured) {
   return s;
 }
 
-// Known failure, disabled: the textured emitter gives about twice the red of the four emitters in the
-// 8 x 8 block nearest the red texel (and less green and blue below it), while a uniform texture
-// matches to the last digit; the cause (selection, density or texel lookup of textured emitters) is
-// not found yet.
-TEST_F(Textures, DISABLED_TexturedEmitterLightsLikeOneEmitterPerTexel) {
+TEST_F(Textures, TexturedEmitterLightsLikeOneEmitterPerTexel) {
   render::RenderSettings rs;
   rs.width = kSize;
   rs.height = kSize;
