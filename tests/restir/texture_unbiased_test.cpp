@@ -97,13 +97,7 @@ constexpr uint32_t kRuns = 48, kReferenceRuns = 24, kReferenceSpp = 64;
 
 class TextureUnbiased : public GpuTest, public ::testing::WithParamInterface<Case> {};
 
-// Disabled: not yet run to completion. The textured ReSTIR variants with the alpha test compile for
-// longer than a ctest entry allows on the 2-core VM (restir-gather's textured temporal pass alone
-// ran past 13 minutes of wall time, 2026-12-06, in LLVM's SROA over the inlined pass); once that
-// compile is cut, enable the cases in a ctest entry of their own (tests/CMakeLists.txt) and break
-// them once (a shift reading the base path's texel, a reconnection visibility ignoring the alpha
-// test) to see them fail.
-TEST_P(TextureUnbiased, DISABLED_MatchesPathTracedReference) {
+TEST_P(TextureUnbiased, MatchesPathTracedReference) {
   const Case& c = GetParam();
   const scene::Scene s = textured_cornell();
   const RunningImage ref = pt_reference(s, c.run, kReferenceRuns, kReferenceSpp);
