@@ -46,6 +46,8 @@ Image decode_rgba16f(std::span<const uint8_t> bytes, uint32_t width, uint32_t he
 // An 8-bit RGB PNG of `rgb` (3 bytes per pixel, top row first); throws ImageError on a size mismatch.
 std::vector<uint8_t> encode_png_rgb8(std::span<const uint8_t> rgb, uint32_t width, uint32_t height);
 void write_png_rgb8(const std::filesystem::path& path, std::span<const uint8_t> rgb, uint32_t width, uint32_t height);
+// An 8-bit RGBA PNG of RGBA8 words (R | G << 8 | B << 16 | A << 24, top row first), as textures hold them.
+std::vector<uint8_t> encode_png_rgba8(std::span<const uint32_t> texels, uint32_t width, uint32_t height);
 // 8-bit sRGB PNG preview: exposure (stops) then the ACES filmic curve (Narkowicz fit), then sRGB OETF.
 // Non-finite pixels are written magenta so that they cannot go unnoticed.
 std::vector<uint8_t> encode_png_preview(const Image& img, float exposure_stops = 0.0f);

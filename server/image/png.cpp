@@ -1,5 +1,6 @@
 // Tonemapped 8-bit PNG previews through libpng's simplified API, which reports errors in the
 // png_image struct instead of longjmp-ing through C++ frames.
+#include <bit>
 #include <climits>
 #include <cmath>
 #include <cstring>
@@ -24,31 +25,48 @@ std::string png_message(const png_image& image) { return image.message; }
 
 }  // namespace
 
-std::vector<uint8_t> encode_png_rgb8(std::span<const uint8_t> rgb, uint32_t width, uint32_t height) {
+namespace {
+
+// An 8-bit PNG of `channels` bytes per pixel (PNG_FORMAT_RGB or PNG_FORMAT_RGBA), top row first.
+std::vector<uint8_t> encode_png8(const uint8_t* pixels, size_t bytes, uint32_t width, uint32_t height, uint32_t channels,
+                                 const char* what) {
   // libpng takes the row stride as a signed 32-bit value.
-  if (width == 0 || height == 0 || width > INT_MAX / 3 || height > INT_MAX || rgb.size() != size_t(width) * height * 3) {
-    throw ImageError("encode_png_rgb8: " + std::to_string(rgb.size()) + " bytes for an image of " + std::to_string(width) + "x" +
-                     std::to_string(height) + " (3 per pixel, within the PNG writer's limits)");
+  if (width == 0 || height == 0 || width > INT_MAX / channels || height > INT_MAX || bytes != size_t(width) * height * channels) {
+    throw ImageError(std::string(what) + ": " + std::to_string(bytes) + " bytes for an image of " + std::to_string(width) + "x" +
+                     std::to_string(height) + " (" + std::to_string(channels) + " per pixel, within the PNG writer's limits)");
   }
   png_image image;
   std::memset(&image, 0, sizeof(image));
   image.version = PNG_IMAGE_VERSION;
   image.width = width;
   image.height = height;
-  image.format = PNG_FORMAT_RGB;
+  image.format = channels == 4 ? PNG_FORMAT_RGBA : PNG_FORMAT_RGB;
   PngImageGuard guard{image};
-  const png_int_32 stride = static_cast<png_int_32>(3 * width);
+  const png_int_32 stride = static_cast<png_int_32>(channels * width);
   // First call sizes the output, second call writes it.
   png_alloc_size_t size = 0;
-  if (!png_image_write_to_memory(&image, nullptr, &size, 0, rgb.data(), stride, nullptr)) {
-    throw ImageError("encode_png_rgb8: libpng failed: " + png_message(image));
+  if (!png_image_write_to_memory(&image, nullptr, &size, 0, pixels, stride, nullptr)) {
+    throw ImageError(std::string(what) + ": libpng failed: " + png_message(image));
   }
-  std::vector<uint8_t> bytes(size);
-  if (!png_image_write_to_memory(&image, bytes.data(), &size, 0, rgb.data(), stride, nullptr)) {
-    throw ImageError("encode_png_rgb8: libpng failed: " + png_message(image));
+  std::vector<uint8_t> out(size);
+  if (!png_image_write_to_memory(&image, out.data(), &size, 0, pixels, stride, nullptr)) {
+    throw ImageError(std::string(what) + ": libpng failed: " + png_message(image));
   }
-  bytes.resize(size);
-  return bytes;
+  out.resize(size);
+  return out;
+}
+
+}  // namespace
+
+std::vector<uint8_t> encode_png_rgb8(std::span<const uint8_t> rgb, uint32_t width, uint32_t height) {
+  return encode_png8(rgb.data(), rgb.size(), width, height, 3, "encode_png_rgb8");
+}
+
+std::vector<uint8_t> encode_png_rgba8(std::span<const uint32_t> texels, uint32_t width, uint32_t height) {
+  // Each word is R | G << 8 | B << 16 | A << 24: its bytes in memory are R, G, B, A on a
+  // little-endian host, which is what PNG_FORMAT_RGBA reads.
+  static_assert(std::endian::native == std::endian::little);
+  return encode_png8(reinterpret_cast<const uint8_t*>(texels.data()), texels.size() * 4, width, height, 4, "encode_png_rgba8");
 }
 
 std::vector<uint8_t> encode_png_preview(const Image& img, float exposure_stops) {

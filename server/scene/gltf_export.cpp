@@ -4,7 +4,9 @@
 // scene's roots. Extra LoD levels are nodes outside the scene, named by the instance's MSFT_lod
 // ids; then one node per punctual light (KHR_lights_punctual, its rest transform as `matrix`, or
 // as an instance's when the light has a track). The default animation is one glTF animation: T/R/S
-// channels per instance and light track, T/R channels on the camera node. Everything else strata needs rides in extras (see gltf_extras.h).
+// channels per instance and light track, T/R channels on the camera node. Textures, alpha modes and
+// the environment map: gltf_export_textures.h. Everything else strata needs rides in extras (see
+// gltf_extras.h).
 // Exactness: floats go into float accessors or into JSON as doubles (which read back exactly);
 // an emission above 1 is split into emissiveFactor * emissiveStrength in double precision.
 #include <algorithm>
@@ -13,6 +15,7 @@
 
 #include <tiny_gltf.h>
 
+#include "scene/gltf_export_textures.h"
 #include "scene/gltf_extras.h"
 #include "scene/scene_io.h"
 #include "scene/transform.h"
@@ -110,6 +113,9 @@ void add_material(GlbBuilder& b, const Material& m) {
         tinygltf::Value(tinygltf::Value::Object{{"specularFactor", tinygltf::Value(double(m.specular))}});
     b.use_extension(kSpecular);
   }
+  std::vector<std::string> used;
+  gltf::export_material_textures(m, out, used);
+  for (const std::string& e : used) b.use_extension(e.c_str());
   b.model().materials.push_back(out);
 }
 
@@ -229,6 +235,13 @@ std::vector<int> add_nodes(GlbBuilder& b, const Scene& s) {
   tinygltf::Scene scene;
   scene.name = s.name;
   scene.extras = gltf::scene_extras(s);
+  if (s.environment.map) {
+    tinygltf::Value::Object root = scene.extras.Get<tinygltf::Value::Object>();
+    tinygltf::Value::Object strata = root["strata"].Get<tinygltf::Value::Object>();
+    gltf::export_environment_map(m, *s.environment.map, strata);
+    root["strata"] = tinygltf::Value(strata);
+    scene.extras = tinygltf::Value(root);
+  }
   for (size_t i = 0; i < s.instances.size(); ++i) {
     const Instance& instance = s.instances[i];
     tinygltf::Node node;
@@ -309,6 +322,7 @@ std::vector<uint8_t> export_glb(const Scene& scene) {
     throw SceneError("cannot export scene '" + scene.name + "': " + e.what());
   }
   GlbBuilder b;
+  gltf::export_textures(b.model(), scene.textures);
   for (const Material& m : scene.materials) add_material(b, m);
   for (const Mesh& mesh : scene.meshes) {
     tinygltf::Mesh out;

@@ -1,6 +1,9 @@
 #include "scene/gltf_extras.h"
 
 #include <cmath>
+#include <cstring>
+
+#include "scene/environment_map.h"
 
 namespace strata::scene::gltf {
 namespace {
@@ -46,6 +49,45 @@ void read_lod_schedule(const Source& s, const Value& schedule, const std::string
                read_count(s, key.Get(1), key_field + "[1]"),
                read_count(s, key.Get(2), key_field + "[2]")});
   }
+}
+
+// An environment map written by export_environment_map (scene/gltf_export_textures.h): width x
+// height texels of float32 RGB in a buffer view, finite and not negative, within the texture
+// dimension limit.
+void read_environment_map(const Source& s, const Value& v, const std::string& field, Scene& scene) {
+  if (!v.IsObject()) s.fail(field, "must be an object");
+  EnvironmentMap map;
+  if (v.Has("name")) {
+    if (!v.Get("name").IsString()) s.fail(field + ".name", "must be a string");
+    map.name = v.Get("name").Get<std::string>();
+  }
+  map.width = v.Has("width") ? read_count(s, v.Get("width"), field + ".width") : 0;
+  map.height = v.Has("height") ? read_count(s, v.Get("height"), field + ".height") : 0;
+  if (map.width == 0 || map.height == 0 || map.width > s.limits.max_texture_dimension || map.height > s.limits.max_texture_dimension)
+    s.fail(field, "is " + std::to_string(map.width) + " x " + std::to_string(map.height) + " texels (1 to " +
+                      std::to_string(s.limits.max_texture_dimension) + " a side)");
+  map.intensity = v.Has("intensity") ? to_float(read_number(s, v.Get("intensity"), field + ".intensity")) : 1.0f;
+  map.rotation = v.Has("rotation") ? to_float(read_number(s, v.Get("rotation"), field + ".rotation")) : 0.0f;
+  if (!std::isfinite(map.intensity) || map.intensity < 0.0f || !std::isfinite(map.rotation))
+    s.fail(field, "needs a finite intensity >= 0 and a finite rotation");
+  const int view = v.Has("bufferView") ? int(read_count(s, v.Get("bufferView"), field + ".bufferView")) : -1;
+  s.check_index(field + ".bufferView", view, s.model.bufferViews.size(), "bufferViews");
+  const tinygltf::BufferView& bv = s.model.bufferViews[size_t(view)];
+  s.check_index(at("bufferViews", size_t(view)) + ".buffer", bv.buffer, s.model.buffers.size(), "buffers");
+  const std::vector<unsigned char>& data = s.model.buffers[size_t(bv.buffer)].data;
+  const size_t texels = size_t(map.width) * map.height;
+  if (bv.byteLength != texels * 12 || bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
+    s.fail(at("bufferViews", size_t(view)), "must hold the map's " + std::to_string(texels) + " float32 RGB texels within its buffer");
+  map.radiance.resize(texels);
+  for (size_t i = 0; i < texels; ++i) {
+    float rgb[3];
+    std::memcpy(rgb, data.data() + bv.byteOffset + 12 * i, sizeof rgb);
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(rgb[c]) || rgb[c] < 0.0f) s.fail(field, "texel " + std::to_string(i) + " is not finite and >= 0");
+    map.radiance[i] = {rgb[0], rgb[1], rgb[2]};
+  }
+  build_environment_tables(map);
+  scene.environment.map = std::move(map);
 }
 
 }  // namespace
@@ -104,6 +146,8 @@ bool read_scene_extras(const Source& s, int scene_index, Scene& scene) {
       scene.environment.radiance[c] = to_float(read_number(s, e.Get(c), field + ".environment"));
     }
   }
+  if (strata.Has("environment_map"))
+    read_environment_map(s, strata.Get("environment_map"), field + ".environment_map", scene);
   if (strata.Has("aperture"))
     scene.camera.aperture = to_float(read_number(s, strata.Get("aperture"), field + ".aperture"));
   if (strata.Has("focus_distance")) {

@@ -31,9 +31,10 @@ Scene load_glb_bytes(std::span<const uint8_t> bytes, const std::string& label,
 // Writes the scene as .glb: MSFT_lod for LoD groups, glTF animations for the default animation,
 // strata-specific data (aperture, focus distance, environment, LoD schedule) in `extras`.
 // load_glb_bytes(export_glb(s)) == s for every built-in scene. Punctual lights are written
-// (KHR_lights_punctual, one node each at its rest transform) but not their animation; textures,
-// alpha modes, environment maps and Scene::ignored_features are not written (no built-in scene
-// has them).
+// (KHR_lights_punctual, one node each at its rest transform, their tracks as animation channels);
+// textures (each image's finest level as PNG), samplers, KHR_texture_transform and alpha modes;
+// the environment map in `extras`. Scene::ignored_features are not written (no built-in scene has
+// them).
 std::vector<uint8_t> export_glb(const Scene& scene);
 void export_glb_file(const Scene& scene, const std::filesystem::path& path);
 

@@ -168,7 +168,7 @@ CpuScene build_cpu_scene(const scene::Scene& scene, const scene::FrameState& fra
          std::to_string(frame.lods.size()) + " LoD levels for " +
          std::to_string(scene.instances.size()) + " instances");
   }
-  CpuScene out{{}, scene.materials, scene.environment};
+  CpuScene out{{}, scene.materials, scene.environment, scene.textures};
   for (size_t i = 0; i < scene.instances.size(); ++i) {
     const scene::Instance& instance = scene.instances[i];
     if (frame.lods[i] >= instance.lod_meshes.size() ||
@@ -213,12 +213,59 @@ CpuScene build_cpu_scene(const scene::Scene& scene, const scene::FrameState& fra
         tri.primitive = static_cast<uint32_t>(pi);
         tri.triangle = static_cast<uint32_t>(ti);
         tri.material = prim.material;
+        const scene::Material& mat = scene.materials[prim.material];
+        const bool set1 = mat.base_color_texture.tex_coord == 1 && !prim.uvs1.empty();
+        const std::vector<glm::vec2>& uvs = set1 ? prim.uvs1 : prim.uvs;
+        if (uvs.size() == prim.positions.size()) {
+          tri.uv0 = glm::dvec2(uvs[prim.indices[3 * ti]]);
+          tri.uv1 = glm::dvec2(uvs[prim.indices[3 * ti + 1]]);
+          tri.uv2 = glm::dvec2(uvs[prim.indices[3 * ti + 2]]);
+        }
         out.triangles.push_back(tri);
       }
     }
   }
   return out;
 }
+
+namespace {
+
+int wrap_index(int64_t i, int n, scene::TextureWrap mode) {
+  if (mode == scene::TextureWrap::kClampToEdge) return int(std::clamp<int64_t>(i, 0, n - 1));
+  const int64_t m = ((i % (2 * n)) + 2 * n) % (2 * n);
+  if (mode == scene::TextureWrap::kMirroredRepeat) return int(m < n ? m : 2 * n - 1 - m);
+  return int(m % n);
+}
+
+// Whether an alpha-tested triangle is a surface at barycentrics (u, v) (the header's rule).
+bool alpha_keeps(const CpuScene& scene, const CpuTriangle& tri, double u, double v) {
+  const scene::Material& m = scene.materials[tri.material];
+  if (m.alpha_mode == scene::AlphaMode::kOpaque) return true;
+  const double cutoff = m.alpha_mode == scene::AlphaMode::kBlend ? 0.5 : double(m.alpha_cutoff);
+  double a = m.alpha;
+  if (m.base_color_texture.texture >= 0) {
+    const scene::Texture& t = scene.textures.textures[size_t(m.base_color_texture.texture)];
+    const scene::MipLevel& l = scene.textures.levels[scene.textures.images[t.image].first_level];
+    const glm::dvec2 uv0 = (1.0 - u - v) * tri.uv0 + u * tri.uv1 + v * tri.uv2;
+    const glm::dvec2 uv = glm::dvec2(glm::dmat3(m.base_color_texture.transform.matrix()) * glm::dvec3(uv0, 1.0));
+    auto alpha_at = [&](int64_t x, int64_t y) {
+      const int xi = wrap_index(x, int(l.width), t.sampler.wrap_u), yi = wrap_index(y, int(l.height), t.sampler.wrap_v);
+      return double(scene.textures.texels[l.offset + size_t(yi) * l.width + size_t(xi)] >> 24) / 255.0;
+    };
+    const glm::dvec2 p = uv * glm::dvec2(l.width, l.height);
+    if (t.sampler.mag_filter == scene::TextureFilter::kNearest) {
+      a *= alpha_at(int64_t(std::floor(p.x)), int64_t(std::floor(p.y)));
+    } else {
+      const glm::dvec2 q = p - 0.5, f = q - glm::floor(q);
+      const int64_t x = int64_t(std::floor(q.x)), y = int64_t(std::floor(q.y));
+      a *= (1 - f.x) * (1 - f.y) * alpha_at(x, y) + f.x * (1 - f.y) * alpha_at(x + 1, y) + (1 - f.x) * f.y * alpha_at(x, y + 1) +
+           f.x * f.y * alpha_at(x + 1, y + 1);
+    }
+  }
+  return a >= cutoff;
+}
+
+}  // namespace
 
 std::optional<CpuHit> intersect(const CpuScene& scene, const CpuRay& ray) {
   std::optional<CpuHit> best;
@@ -241,6 +288,7 @@ std::optional<CpuHit> intersect(const CpuScene& scene, const CpuRay& ray) {
     if (!(v >= 0.0 && u + v <= 1.0)) continue;
     const double t = glm::dot(e2, qvec) * inv_det;
     if (!(t > ray.t_min && t < t_best)) continue;
+    if (!alpha_keeps(scene, tri, u, v)) continue;
     t_best = t;
     best = CpuHit{t, tri.instance, tri.primitive, tri.triangle, u, v, tri.ng, i};
   }

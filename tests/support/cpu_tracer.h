@@ -12,6 +12,9 @@
 //     triangle it leaves.
 // Lambert sampling uses the interpolated shading normal turned to the side the ray arrived from;
 // a sampled direction below the geometric surface ends the path (no light leaks through it).
+// Alpha-tested materials (MASK, and BLEND as the device renders it: MASK at 0.5) let rays through
+// where their coverage, alpha x the base colour texture's alpha at its finest level (the sampler's
+// magnification filter and wrap modes, KHR_texture_transform applied), is under the cutoff.
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -32,12 +35,14 @@ struct CpuTriangle {
   uint32_t primitive = 0;    // index within the mesh used at this frame's LoD
   uint32_t triangle = 0;     // index within the primitive
   uint32_t material = 0;
+  glm::dvec2 uv0{0.0}, uv1{0.0}, uv2{0.0};  // the texCoords the material's base colour texture reads
 };
 
 struct CpuScene {
   std::vector<CpuTriangle> triangles;
   std::vector<scene::Material> materials;
   scene::Environment environment;
+  scene::TextureSet textures;
 };
 
 // Throws std::invalid_argument when the frame state does not fit the scene (array lengths, LoD

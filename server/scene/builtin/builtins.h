@@ -14,5 +14,6 @@ Scene make_foliage();
 Scene make_overlap_uv();
 Scene make_stiff();
 Scene make_lod_bounce();
+Scene make_courtyard();  // textures, alpha-masked leaves, punctual lights and a sky map
 
 }  // namespace strata::scene::builtin

@@ -11,7 +11,7 @@ namespace {
 
 using Generator = Scene (*)();
 // The order is the order builtin_scene_names() reports; cornell, the default, comes first.
-constexpr std::array<std::pair<const char*, Generator>, 10> kBuiltins = {{
+constexpr std::array<std::pair<const char*, Generator>, 11> kBuiltins = {{
     {"cornell", builtin::make_cornell},
     {"cornell-lamps", builtin::make_cornell_lamps},
     {"carousel", builtin::make_carousel},
@@ -22,6 +22,7 @@ constexpr std::array<std::pair<const char*, Generator>, 10> kBuiltins = {{
     {"overlap-uv", builtin::make_overlap_uv},
     {"stiff", builtin::make_stiff},
     {"lod-bounce", builtin::make_lod_bounce},
+    {"courtyard", builtin::make_courtyard},
 }};
 
 }  // namespace
