@@ -38,8 +38,8 @@ Scene load_glb_bytes(std::span<const uint8_t> bytes, const std::string& label,
 std::vector<uint8_t> export_glb(const Scene& scene);
 void export_glb_file(const Scene& scene, const std::filesystem::path& path);
 
-// Deterministic procedural scenes: cornell (the default), carousel, lod-cliff, chess, foliage,
-// overlap-uv, stiff.
+// Deterministic procedural scenes: cornell (the default), cornell-lamps, carousel, carousel-bounce,
+// lod-cliff, chess, foliage, overlap-uv, stiff, lod-bounce, courtyard (scene/builtin/).
 std::vector<std::string> builtin_scene_names();
 bool is_builtin_scene(const std::string& name);
 Scene builtin_scene(const std::string& name);  // throws SceneError for an unknown name
