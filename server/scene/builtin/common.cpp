@@ -1,6 +1,9 @@
 #include "scene/builtin/common.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "scene/animation.h"
 #include "scene/triangle_order.h"
@@ -14,6 +17,19 @@ float key_time(uint32_t frame) {
 
 glm::quat look_at(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up) {
   return glm::normalize(glm::quatLookAtRH(glm::normalize(target - eye), up));
+}
+
+Light light_at(const std::string& name, LightType type, glm::vec3 color, float intensity, glm::vec3 position,
+               glm::vec3 direction) {
+  Light l;
+  l.name = name;
+  l.type = type;
+  l.color = color;
+  l.intensity = intensity;
+  // Straight up or down, +Y cannot be the up vector: -Z is.
+  const glm::vec3 up = std::abs(glm::normalize(direction).y) > 0.9f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
+  l.transform = glm::translate(glm::mat4(1.0f), position) * glm::mat4_cast(look_at(position, position + direction, up));
+  return l;
 }
 
 glm::mat4 compose_key(const TransformKey& key) {

@@ -24,6 +24,11 @@ float key_time(uint32_t frame);
 glm::quat look_at(const glm::vec3& eye, const glm::vec3& target,
                   const glm::vec3& up = {0.0f, 1.0f, 0.0f});
 
+// A punctual light at `position` whose local -Z (a spot's axis, a directional light's direction)
+// points along `direction`.
+Light light_at(const std::string& name, LightType type, glm::vec3 color, float intensity, glm::vec3 position,
+               glm::vec3 direction);
+
 // compose_trs (scene/transform.h), the composition Scene::frame_state uses.
 glm::mat4 compose_key(const TransformKey& key);
 

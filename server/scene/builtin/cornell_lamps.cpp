@@ -5,30 +5,10 @@
 // fixture (no emission).
 #include <cmath>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include "scene/builtin/builtins.h"
 #include "scene/builtin/common.h"
 
 namespace strata::scene::builtin {
-namespace {
-
-// A light at `position` whose local -Z points along `direction`.
-Light light_at(const std::string& name, LightType type, glm::vec3 color, float intensity, glm::vec3 position,
-               glm::vec3 direction) {
-  Light l;
-  l.name = name;
-  l.type = type;
-  l.color = color;
-  l.intensity = intensity;
-  const glm::quat q = look_at(position, position + direction, std::abs(glm::normalize(direction).y) > 0.9f ? glm::vec3(0, 0, -1)
-                                                                                                           : glm::vec3(0, 1, 0));
-  l.transform = glm::translate(glm::mat4(1.0f), position) * glm::mat4_cast(q);
-  return l;
-}
-
-}  // namespace
-
 Scene make_cornell_lamps() {
   Scene s = make_cornell();
   s.name = "cornell-lamps";

@@ -125,16 +125,6 @@ EnvironmentMap dusk_sky() {
   return m;
 }
 
-Light light(const std::string& name, LightType type, glm::vec3 color, float intensity, const glm::mat4& transform) {
-  Light l;
-  l.name = name;
-  l.type = type;
-  l.color = color;
-  l.intensity = intensity;
-  l.transform = transform;
-  return l;
-}
-
 }  // namespace
 
 Scene make_courtyard() {
@@ -179,7 +169,7 @@ Scene make_courtyard() {
   });
 
   // The lantern circles the shrub at 1.4 m, 0.9 m from its stem.
-  s.lights.push_back(light("lantern", LightType::kPoint, {1.0f, 0.75f, 0.45f}, 3.0f, glm::mat4(1.0f)));
+  s.lights.push_back(light_at("lantern", LightType::kPoint, {1.0f, 0.75f, 0.45f}, 3.0f, glm::vec3(0.0f), {0, 0, -1}));
   LightTrack lantern{0, {}};
   for (uint32_t f = 0; f < kFrameCount; ++f) {
     const float a = 2.0f * kPi * float(f) / float(kFrameCount);
@@ -190,17 +180,14 @@ Scene make_courtyard() {
   }
   s.lights[0].transform = compose_key(lantern.keys.front());
   s.animation.light_tracks.push_back(lantern);
-  // A spot above the sign, aimed down the back wall (its local -Z), cones 25 and 40 degrees.
-  Light spot = light("wall spot", LightType::kSpot, {0.9f, 0.95f, 1.0f}, 8.0f,
-                     glm::translate(glm::mat4(1.0f), {2.2f, 2.8f, -3.6f}) *
-                         glm::mat4_cast(look_at({2.2f, 2.8f, -3.6f}, {2.0f, 0.0f, -3.2f}, {0.0f, 0.0f, -1.0f})));
+  // A spot above the sign, aimed down the back wall, cones 25 and 40 degrees.
+  Light spot = light_at("wall spot", LightType::kSpot, {0.9f, 0.95f, 1.0f}, 8.0f, {2.2f, 2.8f, -3.6f}, {-0.2f, -2.8f, 0.4f});
   spot.inner_cone = glm::radians(25.0f);
   spot.outer_cone = glm::radians(40.0f);
   spot.range = 6.0f;
   s.lights.push_back(spot);
   // A low sun from +X (the sky's bright side), over the side wall's far end.
-  s.lights.push_back(light("sun", LightType::kDirectional, {1.0f, 0.7f, 0.45f}, 1.5f,
-                           glm::mat4_cast(look_at({0.0f, 0.0f, 0.0f}, {-1.0f, -0.35f, -0.2f}))));
+  s.lights.push_back(light_at("sun", LightType::kDirectional, {1.0f, 0.7f, 0.45f}, 1.5f, glm::vec3(0.0f), {-1.0f, -0.35f, -0.2f}));
   s.environment.map = dusk_sky();
 
   auto dolly = [](uint32_t f) {
