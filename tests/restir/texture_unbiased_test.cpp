@@ -2,11 +2,12 @@
 // bridge": the footprint rule): cornell with its white surfaces (floor, ceiling, back wall, boxes)
 // under a high-contrast checker base colour texture, so that the primary vertex and the
 // reconnection vertex of most paths sit on textured surfaces whose texels differ from pixel to
-// pixel, and with an alpha-masked checker quad under the ceiling light that moves 10 cm a frame
-// (its transparent texels let light through, its opaque ones cast shadow), so that a temporal
-// shift's visibility must apply the alpha test in each frame at the occluder's own position. A
-// shift that evaluated the base path's texel at the target pixel, or a visibility that ignored
-// the alpha test, would not converge to the path-traced reference.
+// pixel; its ceiling light emitting through a checker (a textured emitter, which light sampling
+// selects by its integrated texture); and an alpha-masked checker quad under the light that moves
+// 10 cm a frame (its transparent texels let light through, its opaque ones cast shadow), so that a
+// temporal shift's visibility must apply the alpha test in each frame at the occluder's own
+// position. Checked by breaking the code (docs/BENCHMARKS.md): a shift whose primary vertex read
+// the base path's texel, or a previous frame's visibility without the alpha test, fails.
 //
 // Tolerance: the harness of tests/support/unbiasedness.h; per 4 x 4 block, the mean over 48
 // independent runs (fixed seeds 1000 + r) against a pt reference of 24 runs x 64 spp per frame
@@ -57,6 +58,12 @@ scene::Scene textured_cornell() {
   const int32_t checker = add_checker(s, 8, rgba(255, 255, 255), rgba(50, 50, 50), scene::ColorSpace::kSrgb, "checker");
   for (scene::Material& m : s.materials)
     if (m.name == "white") m.base_color_texture.texture = checker;
+  // The ceiling light emits through a 4 x 4 checker of full and a fifth of its emission (linear):
+  // next-event estimation selects its two triangles by their integrated texture and each light
+  // sample's radiance is the texel it lands on.
+  const int32_t glow = add_checker(s, 4, rgba(255, 255, 255), rgba(51, 51, 51), scene::ColorSpace::kLinear, "glow");
+  for (scene::Material& m : s.materials)
+    if (m.name == "light") m.emissive_texture.texture = glow;
   scene::Material leaf;
   leaf.name = "occluder";
   leaf.base_color = glm::vec3(0.7f);
