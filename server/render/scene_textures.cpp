@@ -10,7 +10,7 @@
 namespace strata::render {
 namespace {
 
-uint32_t sampler_bits(const scene::Sampler& s, scene::ColorSpace space) {
+uint32_t sampler_bits(const scene::Sampler& s) {
   auto wrap = [](scene::TextureWrap w) {
     switch (w) {
       case scene::TextureWrap::kClampToEdge: return gpu::TEXTURE_WRAP_CLAMP;
@@ -24,8 +24,30 @@ uint32_t sampler_bits(const scene::Sampler& s, scene::ColorSpace space) {
                                                               : gpu::TEXTURE_MIP_LINEAR;
   return (s.mag_filter == scene::TextureFilter::kLinear ? gpu::TEXTURE_MAG_LINEAR : 0u) |
          (s.min_filter == scene::TextureFilter::kLinear ? gpu::TEXTURE_MIN_LINEAR : 0u) | mip << gpu::TEXTURE_MIP_SHIFT |
-         wrap(s.wrap_u) << gpu::TEXTURE_WRAP_U_SHIFT | wrap(s.wrap_v) << gpu::TEXTURE_WRAP_V_SHIFT |
-         (space == scene::ColorSpace::kSrgb ? gpu::TEXTURE_SRGB : 0u);
+         wrap(s.wrap_u) << gpu::TEXTURE_WRAP_U_SHIFT | wrap(s.wrap_v) << gpu::TEXTURE_WRAP_V_SHIFT;
+}
+
+// The device's texels: every level of every image as linear RGBA16 (unorm, two words a texel),
+// sRGB images' RGB decoded here (IEC 61966-2-1, the decode the mip chains were averaged with), so
+// that the shaders read a texel with one load and no pow (include/textures.glsl, texel_at).
+std::vector<glm::uvec2> linear_texels(const scene::TextureSet& set) {
+  std::vector<glm::uvec2> out(set.texels.size());
+  auto unorm16 = [](float v) { return uint32_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 65535.0f)); };
+  for (const scene::TextureImage& image : set.images) {
+    const bool srgb = image.color_space == scene::ColorSpace::kSrgb;
+    const scene::MipLevel& last = set.levels[image.first_level + image.level_count - 1];
+    const size_t begin = set.levels[image.first_level].offset, end = size_t(last.offset) + size_t(last.width) * last.height;
+    for (size_t i = begin; i < end; ++i) {
+      const uint32_t t = set.texels[i];
+      float c[4];
+      for (int k = 0; k < 4; ++k) {
+        const uint8_t v = uint8_t(t >> (8 * k));
+        c[k] = srgb && k < 3 ? scene::srgb_to_linear(v) : float(v) / 255.0f;
+      }
+      out[i] = glm::uvec2(unorm16(c[0]) | unorm16(c[1]) << 16, unorm16(c[2]) | unorm16(c[3]) << 16);
+    }
+  }
+  return out;
 }
 
 gpu::GpuTextureRef texture_ref(const scene::TextureRef& r) {
@@ -146,7 +168,7 @@ SceneTextures::SceneTextures(const gpu::Context& ctx, const scene::Scene& scene)
   std::vector<gpu::GpuTexture> textures;
   for (const auto& t : set.textures) {
     const scene::TextureImage& image = set.images.at(t.image);
-    textures.push_back({image.first_level, image.level_count, sampler_bits(t.sampler, image.color_space), 0u});
+    textures.push_back({image.first_level, image.level_count, sampler_bits(t.sampler), 0u});
   }
   std::vector<gpu::GpuMipLevel> levels;
   for (const auto& l : set.levels) levels.push_back({l.width, l.height, l.offset, 0u});
@@ -173,7 +195,7 @@ SceneTextures::SceneTextures(const gpu::Context& ctx, const scene::Scene& scene)
   material_textures_ = gpu::make_buffer<gpu::GpuMaterialTextures>(ctx, mats, usage, gpu::Memory::Device, "material textures");
   textures_ = gpu::make_buffer<gpu::GpuTexture>(ctx, textures, usage, gpu::Memory::Device, "textures");
   levels_ = gpu::make_buffer<gpu::GpuMipLevel>(ctx, levels, usage, gpu::Memory::Device, "texture levels");
-  texels_ = gpu::make_buffer<uint32_t>(ctx, set.texels, usage, gpu::Memory::Device, "texels");
+  texels_ = gpu::make_buffer<glm::uvec2>(ctx, linear_texels(set), usage, gpu::Memory::Device, "texels");
   vertex_extras_ = gpu::make_buffer<gpu::GpuVertexExtra>(ctx, vertex_extras, usage, gpu::Memory::Device, "vertex extras");
   light_emission_ = gpu::make_buffer<glm::vec4>(ctx, light_emission, usage, gpu::Memory::Device, "triangle light emission");
 }

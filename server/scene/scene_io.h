@@ -16,7 +16,8 @@ struct LoadLimits {
   uint64_t max_triangles = 8'000'000;
   uint32_t max_instances = 65'536;
   uint32_t max_lod_levels = 8;
-  // Decoded textures: every texel of every mip level as RGBA8, and the longest side of one image.
+  // Decoded textures: every texel of every mip level as RGBA8 (the device holds them as linear
+  // RGBA16, twice that), and the longest side of one image.
   // Exceeding either is a SceneLimitError naming it.
   uint64_t max_texture_bytes = 1ull << 30;
   uint32_t max_texture_dimension = 8192;

@@ -51,7 +51,7 @@
 #define BINDING_MATERIAL_TEXTURES 40  // per material: GpuMaterialTextures
 #define BINDING_TEXTURES 41           // per texture: GpuTexture
 #define BINDING_TEXTURE_LEVELS 42     // GpuMipLevel of every image's chain
-#define BINDING_TEXELS 43             // RGBA8 texels of every level
+#define BINDING_TEXELS 43             // linear RGBA16 texels of every level
 #define BINDING_VERTEX_EXTRAS 44      // per vertex: GpuVertexExtra (tangent, TEXCOORD_1), or one unused record
 #define BINDING_LIGHT_EMISSION 45     // per triangle (index array / 3): the emission NEE selects it by (scenes with emissive textures)
 #define BINDING_TEMPORAL_FROM_Q 46     // per pixel: p-hat from q of the canonical sample (restir_temporal_reverse -> restir_temporal)

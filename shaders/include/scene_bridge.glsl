@@ -204,7 +204,7 @@ SurfaceMaterial material_at(SurfaceHit s, float footprint) {
   uint textures = b_material_textures[s.material].textures;
   for (uint left = textures & MATERIAL_SHADING_TEXTURES; left != 0u; left &= left - 1u) {
     uint k = uint(findLSB(left));
-    vec4 c = sample_texture_ref(b_material_textures[s.material].slots[k], s.uv, s.uv_density, footprint, false);
+    vec4 c = sample_texture_ref(b_material_textures[s.material].slots[k], s.uv, s.uv_density, footprint);
     if (k == MATERIAL_TEXTURE_BASE_COLOR) base *= c.rgb;
     if (k == MATERIAL_TEXTURE_METALLIC_ROUGHNESS) {
       roughness *= c.g;
@@ -239,7 +239,7 @@ vec3 emitter_radiance(bool prev, vec3 table_emission, uint instance, uint geomet
   vec4 t1;
   vec4 t2;
   triangle_texcoords(prim, b_material_textures[prim.material].flags, triangle, t0, t1, t2);
-  vec4 texel = sample_texture_ref(b_material_textures[prim.material].slots[MATERIAL_TEXTURE_EMISSIVE], interpolate_texcoords(t0, t1, t2, bary), vec2(0.0), 0.0, false);
+  vec4 texel = sample_texture_ref(b_material_textures[prim.material].slots[MATERIAL_TEXTURE_EMISSIVE], interpolate_texcoords(t0, t1, t2, bary), vec2(0.0), 0.0);
   return b_materials[prim.material].emission_roughness.rgb * texel.rgb;
 #else
   return table_emission;

@@ -113,7 +113,7 @@ vec3 normal_mapped(GpuInstance inst, GpuPrimitive prim, uint material, RayHit h,
   if (!(tl > 0.0) || isinf(tl)) return n;
   t /= tl;
   vec3 b = cross(n, t) * sign;
-  vec3 m = sample_texture_ref(r, s.uv, s.uv_density, 0.0, false).xyz * 2.0 - 1.0;
+  vec3 m = sample_texture_ref(r, s.uv, s.uv_density, 0.0).xyz * 2.0 - 1.0;
   m.xy *= b_material_textures[material].normal_scale;
   vec3 mapped = m.x * t + m.y * b + m.z * n;
   float ml = length(mapped);

@@ -1,16 +1,17 @@
 // Textures and alpha-tested materials as the device sees them; one definition for GLSL (std430) and
 // C++ (render/scene_textures.cpp uploads them). Bound only for scenes with textures or alpha-tested
 // materials, to the passes' textured variants (compiled with STRATA_TEXTURES: include/textures.glsl).
-// Texels are the host's TextureSet as it is (scene/scene.h): RGBA8 words, every mip level of every
-// image in one array, filtered in the shader (include/textures.glsl), so that one storage buffer
-// holds every texture whatever their number and sizes.
+// Texels are the host's TextureSet (scene/scene.h) in its order, every mip level of every image in
+// one array, as linear RGBA16 (sRGB decoded on upload: render/scene_textures.cpp), filtered in the
+// shader (include/textures.glsl), so that one storage buffer holds every texture whatever their
+// number and sizes.
 #ifndef STRATA_TEXTURE_DATA_H
 #define STRATA_TEXTURE_DATA_H
 #include "include/lang.h"
 
 STRATA_NAMESPACE_BEGIN
 
-// GpuTexture::sampling bits: the glTF sampler and the image's colour space.
+// GpuTexture::sampling bits: the glTF sampler.
 CONST_DEF uint TEXTURE_MAG_LINEAR = 1u;   // else nearest
 CONST_DEF uint TEXTURE_MIN_LINEAR = 2u;   // else nearest
 CONST_DEF uint TEXTURE_MIP_SHIFT = 2u;    // 2 bits: TEXTURE_MIP_*
@@ -22,7 +23,6 @@ CONST_DEF uint TEXTURE_WRAP_V_SHIFT = 6u;
 CONST_DEF uint TEXTURE_WRAP_REPEAT = 0u;
 CONST_DEF uint TEXTURE_WRAP_CLAMP = 1u;
 CONST_DEF uint TEXTURE_WRAP_MIRROR = 2u;
-CONST_DEF uint TEXTURE_SRGB = 256u;       // RGB is sRGB-encoded: decoded to linear per texel before filtering
 
 struct GpuTexture {
   uint first_level;  // into the level table

@@ -1,8 +1,8 @@
 // Texture lookups of the scene bridge (include/scene_bridge.glsl includes this file in the passes'
-// textured variants, compiled with STRATA_TEXTURES; nothing else includes it). Texels are RGBA8
-// words in one storage buffer (include/texture_data.h) and are filtered here: sRGB texels are
-// decoded to linear before they are weighted, wrap modes are applied per texel, and the mip level
-// follows from a footprint width in UV units (the scene bridge's footprint rule: material_at).
+// textured variants, compiled with STRATA_TEXTURES; nothing else includes it). Texels are linear
+// RGBA16 (sRGB images decoded on the host, before any filtering) in one storage buffer
+// (include/texture_data.h) and are filtered here: wrap modes are applied per texel, and the mip
+// level follows from a footprint width in UV units (the scene bridge's footprint rule: material_at).
 #ifndef STRATA_TEXTURES_GLSL
 #define STRATA_TEXTURES_GLSL
 
@@ -12,16 +12,11 @@
 layout(set = 0, binding = BINDING_MATERIAL_TEXTURES, std430) readonly buffer MaterialTextures { GpuMaterialTextures b_material_textures[]; };
 layout(set = 0, binding = BINDING_TEXTURES, std430) readonly buffer Textures { GpuTexture b_textures[]; };
 layout(set = 0, binding = BINDING_TEXTURE_LEVELS, std430) readonly buffer TextureLevels { GpuMipLevel b_texture_levels[]; };
-layout(set = 0, binding = BINDING_TEXELS, std430) readonly buffer Texels { uint b_texels[]; };
+layout(set = 0, binding = BINDING_TEXELS, std430) readonly buffer Texels { uvec2 b_texels[]; };
 layout(set = 0, binding = BINDING_VERTEX_EXTRAS, std430) readonly buffer VertexExtras { GpuVertexExtra b_vertex_extras[]; };
 // Per triangle (its first index / 3): the emission light sampling selects it by (render/scene_textures.h,
 // triangle_light_emission), read for materials with an emissive texture only.
 layout(set = 0, binding = BINDING_LIGHT_EMISSION, std430) readonly buffer LightEmission { vec4 b_light_emission[]; };
-
-// IEC 61966-2-1, as scene/texture_mips.cpp decodes when it builds the chains.
-vec3 srgb_to_linear(vec3 c) {
-  return mix(c * (1.0 / 12.92), pow((c + 0.055) * (1.0 / 1.055), vec3(2.4)), greaterThan(c, vec3(0.04045)));
-}
 
 // A texel index wrapped into [0, n): i lies in [-1, 2n] (sample_texture folds UVs into one period
 // of every wrap mode, [0, 2] for repeat and mirror repeat, [-1, 2] for clamp), so that a
@@ -35,11 +30,11 @@ int wrap_texel(int i, int n, uint mode) {
   return m >= n ? m - n : m;
 }
 
-// A texel, its RGB decoded to linear where `sampling` has TEXTURE_SRGB.
-vec4 texel_at(GpuMipLevel l, uint x, uint y, uint sampling) {
-  vec4 c = unpackUnorm4x8(b_texels[l.offset + y * l.width + x]);
-  if ((sampling & TEXTURE_SRGB) != 0u) c.rgb = srgb_to_linear(c.rgb);
-  return c;
+// A texel: linear RGBA (render/scene_textures.h decodes sRGB images when it uploads them, so that a
+// texel read is one load: a pow per channel and texel made a textured frame 1.2-1.3x an untextured one).
+vec4 texel_at(GpuMipLevel l, uint x, uint y) {
+  uvec2 w = b_texels[l.offset + y * l.width + x];
+  return vec4(unpackUnorm2x16(w.x), unpackUnorm2x16(w.y));
 }
 
 // Texture `t` at uv with a footprint `width_uv` wide in UV units (0: the finest level). The level
@@ -48,16 +43,15 @@ vec4 texel_at(GpuMipLevel l, uint x, uint y, uint sampling) {
 // or below 0 the magnification filter reads level 0, above it the minification filter reads the
 // level(s) the sampler's mipmap mode picks: one level (nearest, or none), or two weighted by the
 // fraction of the level of detail (linear). Each level is read nearest or bilinear (texel centres
-// at half-integers, as Vulkan samples). `alpha_only`: only the alpha channel is wanted (the RGB
-// returned is then not decoded from sRGB).
+// at half-integers, as Vulkan samples).
 //
 // The levels and the texels of a level are loops with one texel read in them, not one read per
 // texel and level written out: every call site of a lookup is inlined, and the passes' textured
 // variants hold dozens (material_at at each kind of vertex, the alpha test in every ray query),
 // whose compile time on lavapipe grows with the code.
-vec4 sample_texture(uint t, vec2 uv, float width_uv, bool alpha_only) {
+vec4 sample_texture(uint t, vec2 uv, float width_uv) {
   GpuTexture tex = b_textures[t];
-  uint sampling = alpha_only ? tex.sampling & ~TEXTURE_SRGB : tex.sampling;
+  uint sampling = tex.sampling;
   uint wrap_u = (sampling >> TEXTURE_WRAP_U_SHIFT) & 3u;
   uint wrap_v = (sampling >> TEXTURE_WRAP_V_SHIFT) & 3u;
   // A non-finite UV reads the first texel; a finite one is folded into one period of every wrap mode
@@ -102,7 +96,7 @@ vec4 sample_texture(uint t, vec2 uv, float width_uv, bool alpha_only) {
       float weight = level_weight * (linear ? w.x * w.y : 1.0);
       uint x = uint(wrap_texel(i.x + int(d.x), n.x, wrap_u));
       uint y = uint(wrap_texel(i.y + int(d.y), n.y, wrap_v));
-      sum += weight * texel_at(l, x, y, sampling);
+      sum += weight * texel_at(l, x, y);
     }
   }
   return sum;
@@ -111,12 +105,12 @@ vec4 sample_texture(uint t, vec2 uv, float width_uv, bool alpha_only) {
 // A material's texture at a surface whose texCoord sets are `uv` (xy set 0, zw set 1) with
 // `density` UV units per render-space unit (x set 0, y set 1), for a footprint `width` wide in
 // render space. KHR_texture_transform moves the UV and scales the footprint with it.
-vec4 sample_texture_ref(GpuTextureRef r, vec4 uv, vec2 density, float width, bool alpha_only) {
+vec4 sample_texture_ref(GpuTextureRef r, vec4 uv, vec2 density, float width) {
   vec2 t = r.tex_coord == 1u ? uv.zw : uv.xy;
   float d = r.tex_coord == 1u ? density.y : density.x;
   vec2 tuv = vec2(dot(r.row0.xyz, vec3(t, 1.0)), dot(r.row1.xyz, vec3(t, 1.0)));
   float scale = sqrt(abs(r.row0.x * r.row1.y - r.row0.y * r.row1.x));
-  return sample_texture(uint(r.texture), tuv, width * d * scale, alpha_only);
+  return sample_texture(uint(r.texture), tuv, width * d * scale);
 }
 
 // Coverage of an alpha-tested material (alpha factor x base colour texture alpha, the texture read
@@ -125,7 +119,7 @@ bool alpha_keeps(uint material, vec4 uv) {
   if (b_material_textures[material].alpha_mode != ALPHA_MASK) return true;
   float a = b_material_textures[material].alpha;
   if ((b_material_textures[material].textures & (1u << MATERIAL_TEXTURE_BASE_COLOR)) != 0u)
-    a *= sample_texture_ref(b_material_textures[material].slots[MATERIAL_TEXTURE_BASE_COLOR], uv, vec2(0.0), 0.0, true).a;
+    a *= sample_texture_ref(b_material_textures[material].slots[MATERIAL_TEXTURE_BASE_COLOR], uv, vec2(0.0), 0.0).a;
   return a >= b_material_textures[material].alpha_cutoff;
 }
 
