@@ -50,19 +50,9 @@ class GlbBuilder {
   template <typename T>
   int accessor(const std::vector<T>& data, int component_type, int type, size_t components,
                int target, bool with_bounds) {
-    std::vector<unsigned char>& buffer = model_.buffers[0].data;
-    buffer.resize((buffer.size() + 3) & ~size_t{3});  // 4-byte alignment for every view
-    tinygltf::BufferView view;
-    view.buffer = 0;
-    view.byteOffset = buffer.size();
-    view.byteLength = data.size() * sizeof(T);
-    view.target = target;
-    const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
-    buffer.insert(buffer.end(), bytes, bytes + view.byteLength);
-    model_.bufferViews.push_back(view);
-
     tinygltf::Accessor a;
-    a.bufferView = static_cast<int>(model_.bufferViews.size() - 1);
+    a.bufferView = gltf::append_view(model_, reinterpret_cast<const uint8_t*>(data.data()), data.size() * sizeof(T));
+    model_.bufferViews.back().target = target;
     a.componentType = component_type;
     a.type = type;
     a.count = data.size() * sizeof(T) /
@@ -234,14 +224,7 @@ std::vector<int> add_nodes(GlbBuilder& b, const Scene& s) {
       animated_targets(s.animation.tracks, s.instances.size(), [](const InstanceTrack& t) { return size_t(t.instance); });
   tinygltf::Scene scene;
   scene.name = s.name;
-  scene.extras = gltf::scene_extras(s);
-  if (s.environment.map) {
-    tinygltf::Value::Object root = scene.extras.Get<tinygltf::Value::Object>();
-    tinygltf::Value::Object strata = root["strata"].Get<tinygltf::Value::Object>();
-    gltf::export_environment_map(m, *s.environment.map, strata);
-    root["strata"] = tinygltf::Value(strata);
-    scene.extras = tinygltf::Value(root);
-  }
+  scene.extras = gltf::scene_extras(s, s.environment.map ? gltf::export_environment_map(m, *s.environment.map) : tinygltf::Value());
   for (size_t i = 0; i < s.instances.size(); ++i) {
     const Instance& instance = s.instances[i];
     tinygltf::Node node;

@@ -105,12 +105,12 @@ void export_material_textures(const Material& m, tinygltf::Material& out, std::v
   if (m.emissive_texture.texture >= 0) set_ref(m.emissive_texture, out.emissiveTexture, used);
 }
 
-void export_environment_map(tinygltf::Model& model, const EnvironmentMap& map, tinygltf::Value::Object& strata_extras) {
+tinygltf::Value export_environment_map(tinygltf::Model& model, const EnvironmentMap& map) {
   std::vector<float> rgb;
   rgb.reserve(map.radiance.size() * 3);
   for (const glm::vec3& c : map.radiance) rgb.insert(rgb.end(), {c.r, c.g, c.b});
   const int view = append_view(model, reinterpret_cast<const uint8_t*>(rgb.data()), rgb.size() * sizeof(float));
-  strata_extras["environment_map"] = tinygltf::Value(tinygltf::Value::Object{
+  return tinygltf::Value(tinygltf::Value::Object{
       {"name", tinygltf::Value(map.name)},
       {"width", tinygltf::Value(int(map.width))},
       {"height", tinygltf::Value(int(map.height))},

@@ -23,7 +23,7 @@ void export_textures(tinygltf::Model& model, const TextureSet& set);
 // extensions it uses are added to `used`.
 void export_material_textures(const Material& m, tinygltf::Material& out, std::vector<std::string>& used);
 
-// The environment map as the "environment_map" member of the scene's strata extras object.
-void export_environment_map(tinygltf::Model& model, const EnvironmentMap& map, tinygltf::Value::Object& strata_extras);
+// The environment map's record for the scene's extras (scene_extras), its radiance in a buffer view.
+tinygltf::Value export_environment_map(tinygltf::Model& model, const EnvironmentMap& map);
 
 }  // namespace strata::scene::gltf

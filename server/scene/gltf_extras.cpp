@@ -92,7 +92,7 @@ void read_environment_map(const Source& s, const Value& v, const std::string& fi
 
 }  // namespace
 
-Value scene_extras(const Scene& scene) {
+Value scene_extras(const Scene& scene, const Value& environment_map) {
   Value::Array schedule;
   for (const LodKey& key : scene.animation.lod_schedule) {
     schedule.emplace_back(Value::Array{number(key.time), Value(static_cast<int>(key.instance)),
@@ -104,6 +104,7 @@ Value scene_extras(const Scene& scene) {
                        {"focus_distance", number(scene.camera.focus_distance)},
                        {"frames_per_second", number(scene.animation.frames_per_second)}};
   if (!schedule.empty()) strata.emplace("lod_schedule", Value(std::move(schedule)));
+  if (environment_map.IsObject()) strata["environment_map"] = environment_map;
   return Value(Value::Object{{"strata", Value(std::move(strata))}});
 }
 

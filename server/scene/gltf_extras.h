@@ -16,7 +16,9 @@
 
 namespace strata::scene::gltf {
 
-tinygltf::Value scene_extras(const Scene& scene);
+// `environment_map`: the map's record (export_environment_map), kept as extras.strata.environment_map
+// when it is an object.
+tinygltf::Value scene_extras(const Scene& scene, const tinygltf::Value& environment_map = {});
 tinygltf::Value node_extras(const Instance& instance, bool write_rest_matrix);
 // An animated light node's extras: its exact rest transform (TRS alone may not compose back to it).
 tinygltf::Value light_node_extras(const glm::mat4& rest_matrix);

@@ -96,4 +96,13 @@ uint32_t add_texture_image(TextureSet& set, const image::Rgba8Image& image, Colo
   return uint32_t(set.images.size() - 1);
 }
 
+int32_t add_texture(TextureSet& set, const image::Rgba8Image& image, ColorSpace color_space, const std::string& name,
+                    const Sampler& sampler) {
+  Texture t;
+  t.image = add_texture_image(set, image, color_space, name);
+  t.sampler = sampler;
+  set.textures.push_back(t);
+  return int32_t(set.textures.size() - 1);
+}
+
 }  // namespace strata::scene

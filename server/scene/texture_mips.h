@@ -20,6 +20,11 @@ uint64_t mip_chain_texels(uint32_t width, uint32_t height);
 uint32_t add_texture_image(TextureSet& set, const image::Rgba8Image& image, ColorSpace color_space,
                            const std::string& name);
 
+// Appends `image` (add_texture_image) and a texture of it with `sampler` to `set`; returns the
+// texture's index (a TextureRef::texture).
+int32_t add_texture(TextureSet& set, const image::Rgba8Image& image, ColorSpace color_space, const std::string& name,
+                    const Sampler& sampler = {});
+
 // The sRGB transfer functions used for the chain (IEC 61966-2-1).
 float srgb_to_linear(uint8_t value);
 uint8_t linear_to_srgb(float value);

@@ -98,10 +98,9 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
         vec3 wi = to_local(ls.direction, t, b, ns);
         vec3 f = bsdf_eval_cos(bsdf, wo, wi);
         if (any(greaterThan(f, vec3(0.0)))) {
-          vec3 aim = ls.direction;
-          float dist = ls.distance;
-          bool aimed = isinf(dist) || aim_ray(x, s.position + ls.direction * ls.distance, aim, dist);
-          float t_max = isinf(dist) ? RAY_UNBOUNDED : dist * (1.0 - SHADOW_RAY_SHORTEN);
+          vec3 aim;
+          float t_max;
+          bool aimed = visibility_ray(x, s.position, ls.direction, ls.distance, aim, t_max);
           g_rays_shadow++;
           if (aimed && trace_visible(x, aim, t_max)) {
             float w = k_punctual && ls.delta ? 1.0 : mis_power(ls.pdf, bsdf_pdf(bsdf, wo, wi));

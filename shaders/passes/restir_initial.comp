@@ -156,10 +156,9 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
       vec3 fs = scatter(v, ls.direction);
       if (!(luminance(fs) > 0.0)) continue;
       vec3 origin = spawn(v);
-      vec3 aim = ls.direction;
-      float dist = ls.distance;
-      if (!isinf(dist) && !aim_ray(origin, v.position + ls.direction * ls.distance, aim, dist)) continue;
-      float t_max = isinf(dist) ? RAY_UNBOUNDED : dist * (1.0 - SHADOW_RAY_SHORTEN);
+      vec3 aim;
+      float t_max;
+      if (!visibility_ray(origin, v.position, ls.direction, ls.distance, aim, t_max)) continue;
       g_rays++;
       if (!trace_visible(origin, aim, t_max)) continue;
       float m = delta ? 1.0 : technique_weight(true, ls.pdf, scatter_pdf(v, ls.direction));

@@ -126,10 +126,9 @@ SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {
       r.suffix_density *= pdf;
     }
     vec3 origin = spawn(v);
-    vec3 aim = dir;  // a light sample's shadow ray is aimed from the origin (aim_ray)
-    float dist = light_sample ? ls.distance : RAY_UNBOUNDED;
-    if (light_sample && !isinf(dist) && !aim_ray(origin, v.position + dir * ls.distance, aim, dist)) return replay_fail(r, SHIFT_FAIL_OCCLUDED);
-    float t_max = light_sample && !isinf(dist) ? dist * (1.0 - SHADOW_RAY_SHORTEN) : RAY_UNBOUNDED;
+    vec3 aim = dir;
+    float t_max = RAY_UNBOUNDED;
+    if (light_sample && !visibility_ray(origin, v.position, dir, ls.distance, aim, t_max)) return replay_fail(r, SHIFT_FAIL_OCCLUDED);
     RayHit h;
     r.rays++;
     bool hit = trace_query_in(prev, origin, aim, t_max, light_sample, h);

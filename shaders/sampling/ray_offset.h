@@ -46,5 +46,18 @@ INLINE bool aim_ray(vec3 origin, vec3 target, OUT(vec3) dir, OUT(float) dist) {
   return true;
 }
 
+// The visibility ray from spawn origin `origin` of the surface point `from` to what lies `dist`
+// along the unit `dir` from it: aimed at that point from the origin (aim_ray) and SHADOW_RAY_SHORTEN
+// short of it, or, for an infinite `dist` (the environment, a directional light), along `dir`
+// without end. False where the point is the origin.
+INLINE bool visibility_ray(vec3 origin, vec3 from, vec3 dir, float dist, OUT(vec3) aim, OUT(float) t_max) {
+  aim = dir;
+  t_max = RAY_UNBOUNDED;
+  if (isinf(dist)) return true;
+  if (!aim_ray(origin, from + dir * dist, aim, t_max)) return false;
+  t_max *= 1.0f - SHADOW_RAY_SHORTEN;
+  return true;
+}
+
 STRATA_NAMESPACE_END
 #endif

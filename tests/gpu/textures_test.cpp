@@ -44,11 +44,9 @@ scene::Material lambert(glm::vec3 base) {
 
 // A texture of `image` with nearest magnification.
 int32_t add_texture(scene::Scene& s, const image::Rgba8Image& image, scene::ColorSpace space) {
-  scene::Texture t;
-  t.image = scene::add_texture_image(s.textures, image, space, "known");
-  t.sampler.mag_filter = scene::TextureFilter::kNearest;
-  s.textures.textures.push_back(t);
-  return int32_t(s.textures.textures.size() - 1);
+  scene::Sampler nearest;
+  nearest.mag_filter = scene::TextureFilter::kNearest;
+  return scene::add_texture(s.textures, image, space, "known", nearest);
 }
 
 // The camera at (0, 0, 2 / tan(0.4)) looking down -Z: a quad of half size 1 at z = 0 fills the

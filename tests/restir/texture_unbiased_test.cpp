@@ -45,11 +45,9 @@ int32_t add_checker(scene::Scene& s, uint32_t n, uint32_t a, uint32_t b, scene::
   image::Rgba8Image img{n, n, {}};
   for (uint32_t y = 0; y < n; ++y)
     for (uint32_t x = 0; x < n; ++x) img.texels.push_back((x + y) % 2 == 0 ? a : b);
-  scene::Texture t;
-  t.image = scene::add_texture_image(s.textures, img, space, name);
-  t.sampler.mag_filter = scene::TextureFilter::kNearest;
-  s.textures.textures.push_back(t);
-  return int32_t(s.textures.textures.size() - 1);
+  scene::Sampler nearest;
+  nearest.mag_filter = scene::TextureFilter::kNearest;
+  return scene::add_texture(s.textures, img, space, name, nearest);
 }
 
 // cornell, its white material textured, with the alpha-masked occluder as the last instance.

@@ -35,10 +35,7 @@ int32_t add_generated(Scene& s, const std::string& name, uint32_t w, uint32_t h,
   image::Rgba8Image img{w, h, {}};
   for (uint32_t y = 0; y < h; ++y)
     for (uint32_t x = 0; x < w; ++x) img.texels.push_back(texel(x, y));
-  Texture t;
-  t.image = add_texture_image(s.textures, img, space, name);
-  s.textures.textures.push_back(t);
-  return int32_t(s.textures.textures.size() - 1);
+  return add_texture(s.textures, img, space, name);
 }
 
 // Paving: 4 x 4 stones of 16 texels with 2-texel grout; each stone its own shade (base colour) and
