@@ -55,6 +55,15 @@
 #define BINDING_VERTEX_EXTRAS 44      // per vertex: GpuVertexExtra (tangent, TEXCOORD_1), or one unused record
 #define BINDING_LIGHT_EMISSION 45     // per triangle (index array / 3): the emission NEE selects it by (scenes with emissive textures)
 #define BINDING_TEMPORAL_FROM_Q 46     // per pixel: p-hat from q of the canonical sample (restir_temporal_reverse -> restir_temporal)
+#define BINDING_PRIMARY_MATERIAL 47       // textured scenes, fixed primary vertices: the material of each visibility-buffer entry (GpuPrimaryMaterial)
+#define BINDING_PRIMARY_MATERIAL_PREV 48  // ... and of the previous frame's entries
+// The deformation pass (deform.comp; scenes with skins or morph targets, include/deform_data.h):
+#define BINDING_DEFORM_JOBS 49        // GpuDeformJob per deforming primitive of the slot being written
+#define BINDING_DEFORM_VERTEX_JOB 50  // per deformed vertex of a slot: its job (index into the slot's jobs)
+#define BINDING_MORPH_DELTAS 51       // GpuMorphDelta of every morph target's vertices
+#define BINDING_SKIN_VERTICES 52      // GpuSkinVertex of every skinned vertex
+#define BINDING_SKIN_MATRICES 53      // GpuSkinMatrix of the frame, per skinned instance and joint
+#define BINDING_MORPH_WEIGHTS 54      // the frame's morph weights, per morphing instance and target
 
 // Specialization constants of the passes (constant_id).
 #define SPEC_THIN_LENS 0

@@ -188,10 +188,32 @@ float primary_footprint(float spread, vec3 position, float cos_in) {
   return spread > 0.0 ? spread * length(position) / max(abs(cos_in), 1e-2) : 0.0;
 }
 
-// The material at a surface hit (a loaded hit, or a visibility-buffer entry's: primary_surface_hit),
-// its textures read with a footprint `footprint` wide in render space (the footprint rule above).
-SurfaceMaterial material_at(SurfaceHit s, float footprint) {
 #ifdef STRATA_TEXTURES
+// A textured material's factors at a point: what its textures give there, times the material's
+// factors (the layout of GpuMaterial's first two records: base colour and metallic, emission and
+// roughness).
+struct MaterialFactors {
+  vec4 base_color_metallic;
+  vec4 emission_roughness;
+};
+
+// The material a hit's factors make: its BSDF, emission and the emission light sampling selects
+// its triangle by (with an emissive texture the triangle's integrated texture).
+SurfaceMaterial material_with(uint material, uint triangle_index, MaterialFactors f) {
+  GpuMaterial m = b_materials[material];
+  SurfaceMaterial r;
+  r.bsdf = make_bsdf(f.base_color_metallic.rgb, f.base_color_metallic.a, f.emission_roughness.a, m.specular);
+  r.metallic = f.base_color_metallic.a;
+  r.emission = f.emission_roughness.rgb;
+  r.light_emission = m.emission_roughness.rgb;
+  if ((b_material_textures[material].textures & (1u << MATERIAL_TEXTURE_EMISSIVE)) != 0u) r.light_emission = b_light_emission[triangle_index].rgb;
+  r.double_sided = (m.flags & MATERIAL_DOUBLE_SIDED) != 0u;
+  return r;
+}
+
+// The factors of the material at a surface hit, its textures read with a footprint `footprint`
+// wide in render space (the footprint rule above).
+MaterialFactors material_factors(SurfaceHit s, float footprint) {
   GpuMaterial m = b_materials[s.material];
   vec3 base = m.base_color_metallic.rgb;
   float metallic = m.base_color_metallic.a;
@@ -212,15 +234,19 @@ SurfaceMaterial material_at(SurfaceHit s, float footprint) {
     }
     if (k == MATERIAL_TEXTURE_EMISSIVE) emission *= c.rgb;
   }
-  vec3 light_emission = m.emission_roughness.rgb;
-  if ((textures & (1u << MATERIAL_TEXTURE_EMISSIVE)) != 0u) light_emission = b_light_emission[s.triangle_index].rgb;
-  SurfaceMaterial r;
-  r.bsdf = make_bsdf(base, metallic, roughness, m.specular);
-  r.metallic = metallic;
-  r.emission = emission;
-  r.light_emission = light_emission;
-  r.double_sided = (m.flags & MATERIAL_DOUBLE_SIDED) != 0u;
-  return r;
+  MaterialFactors f;
+  f.base_color_metallic = vec4(base, metallic);
+  f.emission_roughness = vec4(emission, roughness);
+  return f;
+}
+#endif
+
+// The material at a surface hit (a loaded hit; a visibility-buffer entry's is the primary stage's
+// record: fixed_primary_material, restir/context.glsl), its textures read with a footprint
+// `footprint` wide in render space (the footprint rule above).
+SurfaceMaterial material_at(SurfaceHit s, float footprint) {
+#ifdef STRATA_TEXTURES
+  return material_with(s.material, s.triangle_index, material_factors(s, footprint));
 #else
   return material_of(s.material);
 #endif
@@ -340,8 +366,8 @@ bool primary_hit(GpuPrimaryHit p, out RayHit h) {
 
 // The surface of a visibility-buffer entry's hit in the entry's own frame, as load_hit gave it to
 // the primary stage (restir/primary_data.h); meaningful only when the entry has PRIMARY_HIT.
-// `prev`: the entry is the previous frame's (the texCoords of textured variants are read from the mesh
-// its instance showed then).
+// `prev`: the entry is the previous frame's. Its texCoords are not read: the material there is the
+// primary stage's record of it (fixed_primary_material, restir/context.glsl).
 SurfaceHit primary_surface_hit(bool prev, GpuPrimaryHit p) {
   SurfaceHit s;
   s.position = p.position_area.xyz;
@@ -353,18 +379,8 @@ SurfaceHit primary_surface_hit(bool prev, GpuPrimaryHit p) {
   s.uv = vec4(0.0);
   s.uv_density = vec2(0.0);
   s.triangle_index = 0u;
-  if ((p.flags & PRIMARY_HIT) != 0u) {
-    GpuPrimitive prim = b_primitives[instance_in(prev, p.instance).primitive_base + p.geometry];
-    s.triangle_index = prim.index_offset / 3u + p.triangle;
-    if (material_textured(prim.material)) {
-      vec4 t0;
-      vec4 t1;
-      vec4 t2;
-      triangle_texcoords(prim, b_material_textures[prim.material].flags, p.triangle, t0, t1, t2);
-      s.uv = interpolate_texcoords(t0, t1, t2, p.bary);
-      s.uv_density = texcoord_density(t0, t1, t2, s.area);
-    }
-  }
+  if ((p.flags & PRIMARY_HIT) != 0u)
+    s.triangle_index = b_primitives[instance_in(prev, p.instance).primitive_base + p.geometry].index_offset / 3u + p.triangle;
 #endif
   return s;
 }

@@ -31,10 +31,6 @@ void triangle_texcoords(GpuPrimitive prim, uint flags, uint triangle, out vec4 t
                    b_vertices[prim.vertex_offset + b_indices[base + 2u]], prim, triangle, flags, t0, t1, t2);
 }
 
-// Whether a material has a texture (else its texCoords are never read: the alpha test of an
-// untextured material is its factor alone).
-bool material_textured(uint material) { return b_material_textures[material].textures != 0u; }
-
 vec4 interpolate_texcoords(vec4 t0, vec4 t1, vec4 t2, vec2 bary) { return (1.0 - bary.x - bary.y) * t0 + bary.x * t1 + bary.y * t2; }
 
 // UV units per render-space unit of each set over the triangle: sqrt(UV area / area), the

@@ -19,6 +19,11 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "restir/rng_streams.h"
 
 layout(set = 0, binding = BINDING_PRIMARY, std430) writeonly buffer Primary { GpuPrimaryHit b_primary[]; };
+#ifdef STRATA_TEXTURES
+// With PRIMARY_DOMAIN, each entry's material at its primary footprint (restir/primary_data.h): the
+// initial pass and every shift into the domain read it instead of filtering its textures again.
+layout(set = 0, binding = BINDING_PRIMARY_MATERIAL, std430) writeonly buffer PrimaryMaterial { GpuPrimaryMaterial b_primary_material[]; };
+#endif
 
 #include "sampling/warp.h"
 #include "include/camera.glsl"
@@ -68,7 +73,17 @@ void main() {
     SurfaceHit s = load_hit(h);
     p.position_area = vec4(s.position, s.area);
     p.geo_normal_material = vec4(s.geo_normal, uintBitsToFloat(s.material));
-    SurfaceMaterial m = material_at(s, primary_footprint(camera_spread(false), s.position, dot(s.geo_normal, dir)));
+    float footprint = primary_footprint(camera_spread(false), s.position, dot(s.geo_normal, dir));
+#ifdef STRATA_TEXTURES
+    MaterialFactors f = material_factors(s, footprint);
+    SurfaceMaterial m = material_with(s.material, s.triangle_index, f);
+    if (u_frame.primary_mode == PRIMARY_DOMAIN) {
+      b_primary_material[index].base_color_metallic = f.base_color_metallic;
+      b_primary_material[index].emission_roughness = f.emission_roughness;
+    }
+#else
+    SurfaceMaterial m = material_at(s, footprint);
+#endif
     p.shading_normal_kind = vec4(s.shading_normal, uintBitsToFloat(surface_kind(m)));
   }
   b_primary[index] = p;

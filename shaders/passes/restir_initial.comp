@@ -124,8 +124,8 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
     g_primary_emission += environment_radiance(dir) / n_init;  // one segment: not resampled
     return;
   }
-  float spread = camera_spread(false);  // the primary vertex (the scene bridge's footprint rule)
-  Vertex v = domain_primary ? make_vertex(primary_surface_hit(false, ph), h, ph.lod, dir, spread) : load_vertex(false, h, dir, spread);
+  Vertex v = domain_primary ? fixed_primary_vertex(false, ph, pixel_index(pixel), h, dir)
+                            : load_vertex(false, h, dir, camera_spread(false));  // the footprint rule at the primary vertex
   y.x1 = v.point;
   g_primary_emission += v.emission / n_init;  // one segment: not resampled
   float camera_distance = length(v.position);
@@ -328,10 +328,10 @@ bool sees_emission(GpuPrimaryHit h) {
   return (floatBitsToUint(h.shading_normal_kind.w) & SURFACE_KIND_EMISSIVE) != 0u;
 }
 
-vec3 primary_albedo(GpuPrimaryHit e) {
+vec3 primary_albedo(GpuPrimaryHit e, uint entry) {
   if ((e.flags & PRIMARY_HIT) == 0u) return vec3(0.0);
   SurfaceHit s = primary_surface_hit(false, e);
-  return cv_albedo(material_at(s, primary_footprint(camera_spread(false), s.position, dot(s.geo_normal, normalize(s.position)))).bsdf);
+  return cv_albedo(fixed_primary_material(false, entry, s).bsdf);
 }
 
 // What this pixel's 8 neighbours' visibility-buffer entries say about the edges it may straddle,
@@ -469,7 +469,7 @@ void main() {
   if (u_restir.albedo_strata > 0u) {
     uint domains = domain_count();
     uint pixels = u_frame.width * u_frame.height;
-    vec3 a1 = primary_albedo(b_primary[index]);
+    vec3 a1 = primary_albedo(b_primary[index], index);
     vec4 delta = vec4(0.0);
     if (edges.albedo) delta = vec4(stratified_albedo(pixel, index) - a1, 1.0);
     b_contribution[contribution_cv_delta_index(index, domains, pixels)] = delta;

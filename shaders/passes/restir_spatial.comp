@@ -229,9 +229,9 @@ void main() {
       // sample into j is j's record of the opposite slot (restir_spatial_pairs.comp).
       uint slot = nbs.pair_slot[j];
       uvec2 at = centre_job ? domain_pixel(nbs.domain[j], u_frame.width) : pixel;
-      res = load_pair(at, centre_job ? slot ^ 1u : slot, shift_camera(domain_primary(b_primary[pixel_index(at)]), y));
+      res = load_pair(at, centre_job ? slot ^ 1u : slot, shift_camera(domain_primary(b_primary[pixel_index(at)], pixel_index(at)), y));
     } else if (run) {
-      res = shift_path(false, vec2(tp), domain_primary(b_primary[pixel_index(tp)]), y, false);
+      res = shift_path(false, vec2(tp), domain_primary(b_primary[pixel_index(tp)], pixel_index(tp)), y, false);
       g_rays += res.rays;
       counter_add(COUNTER_SPATIAL_SHIFTS, 1u);
       if (res.reason != SHIFT_OK) counter_add(COUNTER_SPATIAL_FAIL + res.reason, 1u);

@@ -24,7 +24,7 @@ void main() {
   if (pixel.x >= u_frame.width || pixel.y >= u_frame.height) return;
   GpuPrimaryHit entry = b_primary[pixel_index(pixel)];
   CentreSurface here = centre_surface(entry);
-  DomainPrimary dp = domain_primary(entry);
+  DomainPrimary dp = domain_primary(entry, pixel_index(pixel));
   ivec2 o[SPATIAL_MAX_PAIR_OFFSETS];
   spatial_pair_offsets(o);
   uint rays = 0u;

@@ -49,7 +49,7 @@ bool heuristic_valid(Backprojection b, float p_hat_current, float p_hat_previous
 ShiftResult shift_temporal(uvec2 pixel, Reservoir history) {
   if (!reservoir_valid(history)) return shift_fail(shift_none(SHIFT_FAIL_ZERO), SHIFT_FAIL_ZERO);
   bool moved = (u_frame.history_flags & HISTORY_SCENE_MOVED) != 0u;
-  ShiftResult s = shift_path(false, vec2(pixel), domain_primary(b_primary[pixel_index(pixel)]), history.y, moved);
+  ShiftResult s = shift_path(false, vec2(pixel), domain_primary(b_primary[pixel_index(pixel)], pixel_index(pixel)), history.y, moved);
   count_shift(s);
   return s;
 }

@@ -41,8 +41,8 @@ void main() {
     // 2. Shift the canonical sample into q (frame t-1), where q's reservoir takes part (its confidence).
     if (unpack_reservoir(b_in[prev_domain_of(q, 0u)]).confidence > 0.0) {
       bool moved = (u_frame.history_flags & HISTORY_SCENE_MOVED) != 0u;
-      GpuPrimaryHit target = b_primary_prev[q.y * u_frame.prev_width + q.x];
-      ShiftResult s = shift_path(true, vec2(q), domain_primary(target), canonical.y, moved);
+      uint entry = q.y * u_frame.prev_width + q.x;
+      ShiftResult s = shift_path(true, vec2(q), domain_primary(b_primary_prev[entry], entry), canonical.y, moved);
       count_shift(s);
       if (s.reason == SHIFT_OK) from_q = p_hat_from(luminance(s.f), s.jacobian);
     }

@@ -30,6 +30,10 @@ uint restir_suffix_mode();                   // SUFFIX_*
 float restir_spatial_radius();               // pixels
 float confidence_cap_of(GpuPrimaryHit e);    // RS-main 3.4 for the domain whose primary vertex is e
 
+// The material of visibility-buffer entry `entry` of the current (prev = false) or previous frame,
+// whose surface is `s` (primary_surface_hit): a fixed primary vertex's, at its primary footprint.
+SurfaceMaterial fixed_primary_material(bool prev, uint entry, SurfaceHit s);
+
 // The statistics: adds n to counter COUNTER_*, or raises it to n.
 void counter_add(uint counter, uint n);
 void counter_max(uint counter, uint n);

@@ -63,6 +63,7 @@ const uint SUFFIX_REPLAYED = 2u;  // traced again (its rays are in replay_rays)
 struct DomainPrimary {
   bool is_fixed;
   GpuPrimaryHit hit;
+  uint entry;        // fixed: the index of `hit` in its frame's visibility buffer
   float t_min;       // free: the primary ray starts at origin + t_min dir ...
   float t_max;       // ... and ends at origin + t_max dir
   bool check_x1;     // free: the primary ray must hit x1's triangle
@@ -72,6 +73,7 @@ struct DomainPrimary {
 DomainPrimary domain_primary_free() {
   DomainPrimary d;
   d.is_fixed = false;
+  d.entry = 0u;
   d.hit.t = 0.0;
   d.hit.instance = 0u;
   d.hit.geometry = 0u;
@@ -99,12 +101,14 @@ DomainPrimary domain_primary_splat(SurfacePoint x1, float t_min, float t_max) {
   return d;
 }
 
-// The domain of a visibility-buffer entry when the frame fixes primary vertices, else free.
-DomainPrimary domain_primary(GpuPrimaryHit h) {
+// The domain of visibility-buffer entry `h`, at index `entry` of its frame's buffer, when the frame
+// fixes primary vertices, else free.
+DomainPrimary domain_primary(GpuPrimaryHit h, uint entry) {
   DomainPrimary d = domain_primary_free();
   if (primary_mode() != PRIMARY_DOMAIN) return d;
   d.is_fixed = true;
   d.hit = h;
+  d.entry = entry;
   return d;
 }
 
@@ -332,8 +336,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
     }
     if (path_end && escaped) return shift_fail(r, j == 0u ? SHIFT_FAIL_PRIMARY : SHIFT_FAIL_REPLAY);
     float spread = j == 0u ? camera_spread(prev) : 0.0;  // the footprint rule: the target path's primary vertex
-    Vertex w = fixed_vertex ? make_vertex(primary_surface_hit(prev, dp.hit), h, dp.hit.lod, dir, spread)
-                            : load_vertex(prev, h, dir, spread);
+    Vertex w = fixed_vertex ? fixed_primary_vertex(prev, dp.hit, dp.entry, h, dir) : load_vertex(prev, h, dir, spread);
     if (j == 0u) {
       r.x1 = w.point;
       camera_distance = length(w.position);

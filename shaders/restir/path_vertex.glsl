@@ -42,12 +42,10 @@ struct Vertex {
   SurfacePoint point;
 };
 
-// `spread`: camera_spread of the vertex's frame at a primary vertex, 0 past it (the scene bridge's
-// footprint rule: the footprint is the target path's own, whichever frame and pixel it is built for).
-Vertex make_vertex(SurfaceHit s, RayHit h, uint lod, vec3 dir_in, float spread) {
+// The vertex at surface `s` of material `m`, reached along `dir_in`.
+Vertex make_vertex_with(SurfaceHit s, SurfaceMaterial m, RayHit h, uint lod, vec3 dir_in) {
   Vertex v;
   float cos_hit = dot(s.geo_normal, -dir_in);
-  SurfaceMaterial m = material_at(s, primary_footprint(spread, s.position, cos_hit));
   bool front = cos_hit > 0.0;
   v.position = s.position;
   v.ng = front ? s.geo_normal : -s.geo_normal;
@@ -68,6 +66,20 @@ Vertex make_vertex(SurfaceHit s, RayHit h, uint lod, vec3 dir_in, float spread) 
   v.point.bary = h.bary;
   v.point.lod = lod;
   return v;
+}
+
+// `spread`: camera_spread of the vertex's frame at a primary vertex, 0 past it (the scene bridge's
+// footprint rule: the footprint is the target path's own, whichever frame and pixel it is built for).
+// A fixed primary vertex takes its material from the primary stage instead (fixed_primary_vertex).
+Vertex make_vertex(SurfaceHit s, RayHit h, uint lod, vec3 dir_in, float spread) {
+  return make_vertex_with(s, material_at(s, primary_footprint(spread, s.position, dot(s.geo_normal, dir_in))), h, lod, dir_in);
+}
+
+// The primary vertex of a visibility-buffer entry (index `entry` in its frame), reached by the ray
+// `dir_in` through its camera sample: its surface and its material as the primary stage recorded them.
+Vertex fixed_primary_vertex(bool prev, GpuPrimaryHit e, uint entry, RayHit h, vec3 dir_in) {
+  SurfaceHit s = primary_surface_hit(prev, e);
+  return make_vertex_with(s, fixed_primary_material(prev, entry, s), h, e.lod, dir_in);
 }
 
 // The direction that a path's random numbers (`seed`) choose by BSDF sampling at its vertex

@@ -40,9 +40,20 @@ struct GpuPrimaryHit {
   vec4 shading_normal_kind;  // shading normal, SURFACE_KIND_* bits of the material (their bits)
 };
 
+// With fixed primary vertices in a textured scene, per visibility-buffer entry (the same index):
+// the factors of its material at its primary footprint, as material_factors gave them to the
+// primary stage (include/scene_bridge.glsl, MaterialFactors). The initial pass and every shift into
+// the domain read its primary vertex's material here (restir/restir_pass.glsl,
+// fixed_primary_material) instead of filtering its textures again.
+struct GpuPrimaryMaterial {
+  vec4 base_color_metallic;
+  vec4 emission_roughness;
+};
+
 STRATA_NAMESPACE_END
 
 #ifdef __cplusplus
 static_assert(sizeof(strata::gpu::GpuPrimaryHit) == 96);
+static_assert(sizeof(strata::gpu::GpuPrimaryMaterial) == 32);
 #endif
 #endif

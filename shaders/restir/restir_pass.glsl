@@ -17,6 +17,11 @@ layout(set = 0, binding = BINDING_RESTIR, std140) uniform Restir { GpuRestirCons
 layout(set = 0, binding = BINDING_COUNTERS, std430) buffer Counters { uint b_counters[]; };
 layout(set = 0, binding = BINDING_RESERVOIRS_OUT, std430) buffer ReservoirsOut { PackedReservoir b_out[]; };
 layout(set = 0, binding = BINDING_CONTRIBUTION, std430) buffer Contribution { vec4 b_contribution[]; };
+#ifdef STRATA_TEXTURES
+// Fixed primary vertices' materials (restir/primary_data.h, GpuPrimaryMaterial), both frames.
+layout(set = 0, binding = BINDING_PRIMARY_MATERIAL, std430) readonly buffer PrimaryMaterial { GpuPrimaryMaterial b_primary_material[]; };
+layout(set = 0, binding = BINDING_PRIMARY_MATERIAL_PREV, std430) readonly buffer PrimaryMaterialPrev { GpuPrimaryMaterial b_primary_material_prev[]; };
+#endif
 
 // The library's context (restir/context.glsl).
 uvec2 image_size(bool prev) { return prev ? uvec2(u_frame.prev_width, u_frame.prev_height) : uvec2(u_frame.width, u_frame.height); }
@@ -33,6 +38,26 @@ uint restir_suffix_mode() { return u_restir.suffix_mode; }
 float restir_spatial_radius() { return u_restir.spatial_radius; }
 void counter_add(uint counter, uint n) { atomicAdd(b_counters[counter], n); }
 void counter_max(uint counter, uint n) { atomicMax(b_counters[counter], n); }
+
+// In textured variants the primary stage's record of the entry's material: its textures are
+// filtered once per pixel and frame, and the initial pass and every shift into the domain see the
+// same material. Elsewhere the material record itself.
+SurfaceMaterial fixed_primary_material(bool prev, uint entry, SurfaceHit s) {
+#ifdef STRATA_TEXTURES
+  // Member by member: glslang stores a whole buffer struct with the wrong type.
+  MaterialFactors f;
+  if (prev) {
+    f.base_color_metallic = b_primary_material_prev[entry].base_color_metallic;
+    f.emission_roughness = b_primary_material_prev[entry].emission_roughness;
+  } else {
+    f.base_color_metallic = b_primary_material[entry].base_color_metallic;
+    f.emission_roughness = b_primary_material[entry].emission_roughness;
+  }
+  return material_with(s.material, s.triangle_index, f);
+#else
+  return material_of(s.material);
+#endif
+}
 
 #ifdef STRATA_HISTORY
 // Counts a surface resolution across a LoD switch (COUNTER_LOD_*).

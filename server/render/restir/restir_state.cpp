@@ -113,6 +113,8 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
   // the initial pass binds one entry that it never reads (its layout has the binding).
   const size_t entries = primary_stage ? size_t(domains) : 1;
   visibility = PingPong(ctx, sizeof(gpu::GpuPrimaryHit) * entries, "visibility buffer");
+  primary_material = PingPong(ctx, sizeof(gpu::GpuPrimaryMaterial) * (primary_material_kept() ? size_t(pixels) : 1),
+                              "primary materials");
   const size_t offset_entries = splat_sort() ? size_t(domains) + 1 : 1;
   splat_offsets = device_storage(ctx, sizeof(uint32_t) * offset_entries, "splat offsets");
   const size_t layer_entries = multilayer() ? size_t(domains) : 1;
@@ -130,6 +132,7 @@ std::map<std::string, uint64_t> RestirState::memory_bytes() const {
                                        {"contribution", contribution.size()},
                                        {"frame_constants_and_counters", constants.size()}};
   if (primary_stage) m["visibility"] = visibility.size();
+  if (primary_material_kept()) m["primary_material"] = primary_material.size();
   if (multilayer()) m["domains"] = domain_ranges.size() + domain_marks.size() + domain_list.size() + domain_args.size();
   return m;
 }
@@ -137,7 +140,9 @@ std::map<std::string, uint64_t> RestirState::memory_bytes() const {
 std::vector<PassResource> restir_resources(const RestirState& state, PassResource out, std::vector<PassResource> extra) {
   std::vector<PassResource> r = {uniform(BINDING_FRAME, state.shared.constants), uniform(BINDING_RESTIR, state.constants),
                                  storage(BINDING_COUNTERS, Access::read_write, state.shared.counters), std::move(out),
-                                 storage(BINDING_CONTRIBUTION, Access::read_write, state.contribution)};
+                                 storage(BINDING_CONTRIBUTION, Access::read_write, state.contribution),
+                                 history_current(BINDING_PRIMARY_MATERIAL, Access::read, state.primary_material),
+                                 history_previous(BINDING_PRIMARY_MATERIAL_PREV, state.primary_material)};
   for (auto& e : extra) r.push_back(std::move(e));
   return r;
 }

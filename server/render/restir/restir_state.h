@@ -38,6 +38,11 @@ struct RestirState {
   gpu::Buffer contribution;   // per domain f(Y) of its reservoir, then per pixel the directly seen emission
   PingPong visibility;        // per domain: the primary stage's hit (layer 0) and the representative hits of the
                               // deeper layers (GpuPrimaryHit); one entry when no primary stage runs
+  // Fixed primary vertices in a textured scene: per pixel the material of its visibility-buffer entry
+  // (GpuPrimaryMaterial), which the initial stage and every shift into the domain read instead of
+  // filtering its textures again; one entry otherwise (every ReSTIR pass's layout has the binding).
+  PingPong primary_material;
+  bool primary_material_kept() const { return primary_stage && spec.fixed_primary && shared.scene.textured(); }
   // Splat methods: the splat counting sort's exclusive prefix sum over domains (domains + 1 entries;
   // stage temporal-splat writes it before the initial stage, which reads it: pixels no splat reached
   // take disocclusion_initial_candidates); one entry for the other methods.
@@ -66,7 +71,8 @@ struct RestirState {
 };
 
 // What every ReSTIR pass binds (shaders/restir/restir_pass.glsl): frame and method constants,
-// counters, the reservoirs it writes at `out`, the contribution buffer; then `extra`.
+// counters, the reservoirs it writes at `out`, the contribution buffer, both frames' primary
+// materials; then `extra`.
 std::vector<PassResource> restir_resources(const RestirState& state, PassResource out, std::vector<PassResource> extra = {});
 
 }  // namespace strata::render

@@ -14,7 +14,8 @@ class PrimaryStage : public Stage {
       : state_(state),
         pass_(state.shared.ctx, &state.shared.scene, {.lights = false, .history = false}, "primary",
               {uniform(BINDING_FRAME, state.shared.constants),
-               history_current(BINDING_PRIMARY, Access::write, state.visibility)}) {}
+               history_current(BINDING_PRIMARY, Access::write, state.visibility),
+               history_current(BINDING_PRIMARY_MATERIAL, Access::write, state.primary_material)}) {}
   uint32_t timed_passes() const override { return 1; }
   void record(const StageFrame& f) override {
     timed(f, "primary", [&] { pass_.dispatch_2d(f.cmd, f.parity, state_.width, state_.height); });
