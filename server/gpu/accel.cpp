@@ -67,11 +67,18 @@ void AccelerationStructure::create(const Context& ctx, VkAccelerationStructureTy
   address_ = ctx.rt().get_as_address(ctx.device(), &ai);
 }
 
-Blas::Blas(const Context& ctx, std::span<const BlasTriangles> geometries) {
-  if (geometries.empty()) throw GpuError("a BLAS needs at least one geometry");
+namespace {
+
+// The build description of a BLAS over `geometries` (they and the returned vectors must outlive its use).
+struct BlasBuild {
   std::vector<VkAccelerationStructureGeometryKHR> geoms;
   std::vector<VkAccelerationStructureBuildRangeInfoKHR> ranges;
   std::vector<uint32_t> counts;
+  VkAccelerationStructureBuildGeometryInfoKHR info{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
+};
+
+void describe_blas(std::span<const BlasTriangles> geometries, VkBuildAccelerationStructureFlagsKHR flags, BlasBuild& b) {
+  if (geometries.empty()) throw GpuError("a BLAS needs at least one geometry");
   for (const auto& g : geometries) {
     VkAccelerationStructureGeometryKHR geom{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
     geom.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
@@ -84,28 +91,67 @@ Blas::Blas(const Context& ctx, std::span<const BlasTriangles> geometries) {
     tri.maxVertex = g.vertex_count > 0 ? g.vertex_count - 1 : 0;
     tri.indexType = VK_INDEX_TYPE_UINT32;
     tri.indexData.deviceAddress = g.indices;
-    geoms.push_back(geom);
-    ranges.push_back({g.triangle_count, 0, 0, 0});
-    counts.push_back(g.triangle_count);
+    b.geoms.push_back(geom);
+    b.ranges.push_back({g.triangle_count, 0, 0, 0});
+    b.counts.push_back(g.triangle_count);
   }
-  VkAccelerationStructureBuildGeometryInfoKHR build{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
-  build.type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR;
-  build.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR;
-  build.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
-  build.geometryCount = uint32_t(geoms.size());
-  build.pGeometries = geoms.data();
+  b.info.type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR;
+  b.info.flags = flags;
+  b.info.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
+  b.info.geometryCount = uint32_t(b.geoms.size());
+  b.info.pGeometries = b.geoms.data();
+}
+
+constexpr VkBuildAccelerationStructureFlagsKHR k_deforming_flags =
+    VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR | VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_UPDATE_BIT_KHR;
+
+}  // namespace
+
+Blas::Blas(const Context& ctx, std::span<const BlasTriangles> geometries) {
+  BlasBuild b;
+  describe_blas(geometries, VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR, b);
   VkAccelerationStructureBuildSizesInfoKHR sizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
-  ctx.rt().get_build_sizes(ctx.device(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &build, counts.data(), &sizes);
+  ctx.rt().get_build_sizes(ctx.device(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &b.info, b.counts.data(), &sizes);
   create(ctx, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, sizes.accelerationStructureSize, "blas");
   VkDeviceSize align = scratch_alignment(ctx);
   Buffer scratch(ctx, sizes.buildScratchSize + align, k_scratch_usage, Memory::Device, "blas scratch");
-  build.dstAccelerationStructure = handle_;
-  build.scratchData.deviceAddress = align_up(scratch.address(), align);
-  const VkAccelerationStructureBuildRangeInfoKHR* range_ptr = ranges.data();
+  b.info.dstAccelerationStructure = handle_;
+  b.info.scratchData.deviceAddress = align_up(scratch.address(), align);
+  const VkAccelerationStructureBuildRangeInfoKHR* range_ptr = b.ranges.data();
   ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-    ctx.rt().cmd_build_as(cmd, 1, &build, &range_ptr);
+    ctx.rt().cmd_build_as(cmd, 1, &b.info, &range_ptr);
     as_barrier(cmd);
   });
+}
+
+DeformingBlas::DeformingBlas(const Context& ctx, std::span<const BlasTriangles> geometries)
+    : geometries_(geometries.begin(), geometries.end()) {
+  BlasBuild b;
+  describe_blas(geometries_, k_deforming_flags, b);
+  VkAccelerationStructureBuildSizesInfoKHR sizes{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+  ctx.rt().get_build_sizes(ctx.device(), VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR, &b.info, b.counts.data(), &sizes);
+  create(ctx, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, sizes.accelerationStructureSize, "deforming blas");
+  scratch_alignment_ = scratch_alignment(ctx);
+  scratch_ = Buffer(ctx, std::max(sizes.buildScratchSize, sizes.updateScratchSize) + scratch_alignment_, k_scratch_usage,
+                    Memory::Device, "deforming blas scratch");
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) { record(cmd, false); });
+}
+
+void DeformingBlas::record_update(VkCommandBuffer cmd, bool rebuild) {
+  record(cmd, !rebuild);
+  (rebuild ? rebuilds_ : refits_)++;
+}
+
+void DeformingBlas::record(VkCommandBuffer cmd, bool update) {
+  BlasBuild b;
+  describe_blas(geometries_, k_deforming_flags, b);
+  b.info.mode = update ? VK_BUILD_ACCELERATION_STRUCTURE_MODE_UPDATE_KHR : VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
+  b.info.srcAccelerationStructure = update ? handle_ : VK_NULL_HANDLE;
+  b.info.dstAccelerationStructure = handle_;
+  b.info.scratchData.deviceAddress = align_up(scratch_.address(), scratch_alignment_);
+  const VkAccelerationStructureBuildRangeInfoKHR* range_ptr = b.ranges.data();
+  ctx_->rt().cmd_build_as(cmd, 1, &b.info, &range_ptr);
+  as_barrier(cmd);
 }
 
 Tlas::Tlas(const Context& ctx, uint32_t max_instances)

@@ -49,6 +49,29 @@ class Blas : public AccelerationStructure {
   Blas(const Context& ctx, std::span<const BlasTriangles> geometries);
 };
 
+// The BLAS of a deforming mesh: its vertices move every frame (render/scene_deform.h), so it is
+// built once allowing updates and then refit (the same triangles, new positions) or rebuilt, each
+// recorded into the frame's command buffer after the pass that wrote the vertices.
+class DeformingBlas : public AccelerationStructure {
+ public:
+  DeformingBlas() = default;
+  // Builds on the device and waits, from the vertices as they are now.
+  DeformingBlas(const Context& ctx, std::span<const BlasTriangles> geometries);
+  // Records a refit (`rebuild` false) or a full build from the current vertices, then a barrier
+  // that makes it visible to the TLAS build and to compute shaders.
+  void record_update(VkCommandBuffer cmd, bool rebuild);
+  uint32_t refits() const { return refits_; }
+  uint32_t rebuilds() const { return rebuilds_; }
+
+ private:
+  void record(VkCommandBuffer cmd, bool update);
+  std::vector<BlasTriangles> geometries_;
+  Buffer scratch_;
+  VkDeviceSize scratch_alignment_ = 256;
+  uint32_t refits_ = 0;
+  uint32_t rebuilds_ = 0;
+};
+
 class Tlas : public AccelerationStructure {
  public:
   explicit Tlas(const Context& ctx, uint32_t max_instances);

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "render/scene_textures.h"
+#include "scene/deform.h"
 #include "render/punctual_lights.h"
 
 namespace strata::render {
@@ -38,6 +39,19 @@ std::vector<gpu::GpuAliasEntry> build_alias_table(std::span<const double> weight
   return table;
 }
 
+std::vector<glm::vec3> deformed_positions(const scene::Scene& scene, const scene::FrameState& frame, size_t i,
+                                          const scene::Primitive& prim) {
+  const scene::Instance& inst = scene.instances[i];
+  std::vector<scene::SkinningMatrix> skinning;
+  if (inst.skin >= 0) {
+    const scene::Skin& skin = scene.skins[size_t(inst.skin)];
+    const bool posed = i < frame.joints.size() && !frame.joints[i].empty();
+    skinning = scene::skinning_matrices(skin, frame.transforms[i], posed ? frame.joints[i] : skin.joints);
+  }
+  const bool weighted = i < frame.morph_weights.size() && !frame.morph_weights[i].empty();
+  return scene::deform_primitive(prim, skinning, weighted ? frame.morph_weights[i] : inst.morph_weights).positions;
+}
+
 glm::mat4 object_to_render(const glm::mat4& m, glm::dvec3 origin) {
   glm::mat4 r = m;
   for (int i = 0; i < 3; ++i) r[3][i] = float(double(m[3][i]) - origin[i]);
@@ -58,6 +72,11 @@ EmitterTable build_emitter_table(const scene::Scene& scene, const scene::FrameSt
       const auto& mat = scene.materials[prim.material];
       double material_lum = 0.2126 * mat.emission.r + 0.7152 * mat.emission.g + 0.0722 * mat.emission.b;
       if (!(material_lum > 0.0)) continue;
+      // A deforming instance's emitters are where its deformed vertices are this frame (the same
+      // computation as the device's deformation pass: scene/deform.h).
+      std::vector<glm::vec3> deformed;
+      if (inst.deforms()) deformed = deformed_positions(scene, frame, i, prim);
+      const std::vector<glm::vec3>& positions = inst.deforms() ? deformed : prim.positions;
       uint32_t flags = mat.double_sided ? gpu::MATERIAL_DOUBLE_SIDED : 0u;
       float flag_bits;
       std::memcpy(&flag_bits, &flags, sizeof flags);
@@ -67,7 +86,7 @@ EmitterTable build_emitter_table(const scene::Scene& scene, const scene::FrameSt
         const double lum = 0.2126 * emission.r + 0.7152 * emission.g + 0.0722 * emission.b;
         if (!(lum > 0.0)) continue;
         glm::vec3 p[3];
-        for (int k = 0; k < 3; ++k) p[k] = glm::vec3(m * glm::vec4(prim.positions[prim.indices[3 * tri + size_t(k)]], 1.0f));
+        for (int k = 0; k < 3; ++k) p[k] = glm::vec3(m * glm::vec4(positions[prim.indices[3 * tri + size_t(k)]], 1.0f));
         if (mirrored) std::swap(p[1], p[2]);
         float area = 0.5f * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
         if (!(area > 0.0f) || !std::isfinite(area)) continue;  // degenerate: cannot be sampled by area

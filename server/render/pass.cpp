@@ -67,8 +67,8 @@ void Pass::dispatch_layers(VkCommandBuffer cmd, int parity, uint32_t width, uint
   gpu::dispatch_layers(cmd, *pipeline_, *sets_[size_t(parity & 1)], width, height, layers);
 }
 
-void Pass::dispatch_1d(VkCommandBuffer cmd, int parity, uint32_t count) const {
-  gpu::dispatch_1d(cmd, *pipeline_, *sets_[size_t(parity & 1)], count);
+void Pass::dispatch_1d(VkCommandBuffer cmd, int parity, uint32_t count, const void* push) const {
+  gpu::dispatch_1d(cmd, *pipeline_, *sets_[size_t(parity & 1)], count, push, push ? push_bytes_ : 0);
 }
 
 void Pass::dispatch_indirect(VkCommandBuffer cmd, int parity, const gpu::Buffer& args, VkDeviceSize offset, const void* push) const {

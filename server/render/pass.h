@@ -73,7 +73,7 @@ class Pass {
 
   void dispatch_2d(VkCommandBuffer cmd, int parity, uint32_t width, uint32_t height, const void* push = nullptr) const;
   void dispatch_layers(VkCommandBuffer cmd, int parity, uint32_t width, uint32_t height, uint32_t layers) const;
-  void dispatch_1d(VkCommandBuffer cmd, int parity, uint32_t count) const;
+  void dispatch_1d(VkCommandBuffer cmd, int parity, uint32_t count, const void* push = nullptr) const;
   // Workgroup counts read from `args` at `offset` (VkDispatchIndirectCommand), e.g. one thread per
   // entry of a dense domain list that an earlier pass compacted.
   void dispatch_indirect(VkCommandBuffer cmd, int parity, const gpu::Buffer& args, VkDeviceSize offset = 0,

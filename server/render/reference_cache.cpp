@@ -1,5 +1,6 @@
 #include "render/reference_cache.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstdlib>
@@ -215,6 +216,43 @@ std::string scene_content_hash(const scene::Scene& s) {
     h.pod(k.instance);
     h.pod(k.level);
   }
+  // Deforming meshes, hashed only where a scene has them (the keys of every other scene stay).
+  const bool deforming = !s.skins.empty() || std::any_of(s.instances.begin(), s.instances.end(), [](const auto& i) { return i.deforms(); });
+  if (deforming) {
+    h.text("deforming meshes");
+    for (const auto& skin : s.skins) {
+      h.array(skin.inverse_bind);
+      h.array(skin.joints);
+    }
+    for (const auto& mesh : s.meshes) {
+      h.array(mesh.weights);
+      for (const auto& p : mesh.primitives) {
+        h.array(p.joints);
+        h.array(p.weights);
+        h.pod(uint64_t(p.targets.size()));
+        for (const auto& target : p.targets) {
+          h.array(target.positions);
+          h.array(target.normals);
+        }
+      }
+    }
+    for (const auto& i : s.instances) {
+      h.pod(i.skin);
+      h.array(i.morph_weights);
+    }
+    for (const auto& tr : a.joint_tracks) {
+      h.pod(tr.skin);
+      h.pod(tr.joint);
+      hash_keys(h, tr.keys);
+    }
+    for (const auto& tr : a.morph_tracks) {
+      h.pod(tr.instance);
+      for (const auto& k : tr.keys) {
+        h.pod(k.time);
+        h.array(k.weights);
+      }
+    }
+  }
   return h.finish_hex();
 }
 
@@ -232,6 +270,10 @@ std::string reference_cache_key(const ReferenceKey& k) {
   h.array(k.frame.transforms);
   h.array(k.frame.lods);
   h.array(k.frame.lights);
+  for (size_t i = 0; i < k.frame.joints.size(); ++i)
+    if (!k.frame.joints[i].empty()) h.array(k.frame.joints[i]);
+  for (size_t i = 0; i < k.frame.morph_weights.size(); ++i)
+    if (!k.frame.morph_weights[i].empty()) h.array(k.frame.morph_weights[i]);
   h.pod(k.width);
   h.pod(k.height);
   h.pod(k.max_depth);

@@ -54,7 +54,8 @@ Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSet
   counters_ = gpu::Buffer(ctx, sizeof(uint32_t) * gpu::COUNTER_COUNT, gpu::k_storage_usage, gpu::Memory::Device, "counters");
   accum_ = gpu::Buffer(ctx, sizeof(glm::vec4) * pixels, gpu::k_storage_usage, gpu::Memory::Device, "accumulation");
   method_ = make_method(settings_, SharedResources{ctx, *scene_, constants_, counters_, accum_});
-  timer_ = std::make_unique<gpu::PassTimer>(ctx, 1 + method_->timed_passes());  // "update", then the method's
+  // "deform" (scenes with deforming instances), "update", then the method's
+  timer_ = std::make_unique<gpu::PassTimer>(ctx, (scene_->deformation() ? 2 : 1) + method_->timed_passes());
 }
 
 Renderer::~Renderer() = default;
@@ -70,6 +71,7 @@ std::map<std::string, uint64_t> Renderer::memory_bytes() const {
   if (mem.lod_uv > 0) m["lod_uv_space"] = mem.lod_uv;
   if (mem.textures > 0) m["textures"] = mem.textures;
   if (mem.environment > 0) m["environment"] = mem.environment;
+  if (mem.deformation > 0) m["deformation"] = mem.deformation;
   for (const auto& [group, bytes] : method_->memory_bytes()) m[group] += bytes;
   return m;
 }
@@ -89,9 +91,17 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
   const bool env_nee = environment_nee(sc.environment, scene_->has_emitters() || scene_->has_punctual());
   if (!accumulate) accumulated_spp_ = 0;
   uint32_t tlas_builds_before = scene_->tlas_builds(), tlas_refits_before = scene_->tlas_refits();
+  const SceneDeformation* deformation = scene_->deformation();
+  const uint32_t blas_refits_before = deformation ? deformation->refits() : 0;
+  const uint32_t blas_rebuilds_before = deformation ? deformation->rebuilds() : 0;
 
   ctx_.submit_and_wait([&](VkCommandBuffer cmd) {
     timer_->reset(cmd);
+    if (scene_->deformation()) {
+      timer_->begin(cmd, "deform");
+      scene_->record_deformation(cmd, frame);
+      timer_->end(cmd);
+    }
     timer_->begin(cmd, "update");
     scene_->record_update(cmd, frame);
     if (!accumulate) vkCmdFillBuffer(cmd, accum_.handle(), 0, VK_WHOLE_SIZE, 0);
@@ -139,7 +149,16 @@ FrameResult Renderer::render(const scene::FrameState& frame, uint32_t frame_inde
   s.memory_bytes = memory_bytes();
   s.tlas_builds = scene_->tlas_builds() - tlas_builds_before;
   s.tlas_refits = scene_->tlas_refits() - tlas_refits_before;
-  s.passes = {{"update", true, s.tlas_refits ? "TLAS refit (transforms only)" : "TLAS build"}};
+  s.passes.clear();
+  if (const SceneDeformation* d = scene_->deformation()) {
+    const uint32_t refits = d->refits() - blas_refits_before, rebuilds = d->rebuilds() - blas_rebuilds_before;
+    s.passes.push_back({"deform", true,
+                        std::to_string(d->deformed_vertices()) + " vertices of the skinned and morphing instances; their BLAS " +
+                            std::to_string(refits) + " refit, " + std::to_string(rebuilds) +
+                            " rebuilt (a rebuild when a box's surface area grew past " +
+                            std::to_string(SceneDeformation::k_rebuild_growth).substr(0, 3) + "x that of its last build)"});
+  }
+  s.passes.push_back({"update", true, s.tlas_refits ? "TLAS refit (transforms only)" : "TLAS build"});
   for (auto& d : method_->decisions()) s.passes.push_back(std::move(d));
   return r;
 }

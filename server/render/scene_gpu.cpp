@@ -19,9 +19,12 @@ constexpr VkBufferUsageFlags k_geometry_usage =
 
 GpuScene::GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep_history) : ctx_(ctx), scene_(scene) {
   scene.validate();
-  if (SceneTextures::needed(scene)) textures_ = std::make_unique<SceneTextures>(ctx, scene);
-  upload_geometry();
-  slots_.resize(keep_history ? 2 : 1);
+  const uint32_t slot_count = keep_history ? 2 : 1;
+  const std::vector<uint32_t> copies =
+      SceneDeformation::needed(scene) ? SceneDeformation::copied_meshes(scene, slot_count) : std::vector<uint32_t>{};
+  if (SceneTextures::needed(scene)) textures_ = std::make_unique<SceneTextures>(ctx, scene, copies);
+  upload_geometry(slot_count, copies);
+  slots_.resize(slot_count);
   for (auto& slot : slots_) {
     slot.tlas = std::make_unique<gpu::Tlas>(ctx, uint32_t(scene.instances.size()));
     slot.instances = gpu::Buffer(ctx, std::max<size_t>(16, sizeof(gpu::GpuInstance) * scene.instances.size()),
@@ -69,7 +72,7 @@ GpuScene::GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep
                        "emitter alias table");
 }
 
-void GpuScene::upload_geometry() {
+void GpuScene::upload_geometry(uint32_t slot_count, const std::vector<uint32_t>& copies) {
   std::vector<gpu::GpuVertex> vertices;
   std::vector<uint32_t> indices;
   std::vector<gpu::GpuPrimitive> prims;
@@ -78,8 +81,10 @@ void GpuScene::upload_geometry() {
     bool opaque;
   };
   std::vector<std::vector<Range>> ranges(scene_.meshes.size());
+  SceneDeformation::Layout layout;
   for (size_t m = 0; m < scene_.meshes.size(); ++m) {
     mesh_primitive_base_.push_back(uint32_t(prims.size()));
+    layout.mesh_vertex_base.push_back(uint32_t(vertices.size()));
     glm::vec3 lo(std::numeric_limits<float>::max());
     glm::vec3 hi(-std::numeric_limits<float>::max());
     for (const auto& p : scene_.meshes[m].primitives) {
@@ -97,6 +102,25 @@ void GpuScene::upload_geometry() {
     }
     mesh_bounds_.push_back({lo, hi});
   }
+  // The deforming instances' copies (render/scene_deform.h): the rest vertices again, which the
+  // deformation pass overwrites every frame, with primitive records of their own.
+  std::vector<std::vector<Range>> copy_ranges;
+  for (uint32_t m : copies) {
+    layout.copy_vertex_base.push_back(uint32_t(vertices.size()));
+    layout.copy_primitive_base.push_back(uint32_t(prims.size()));
+    const uint32_t first = layout.mesh_vertex_base[m];
+    copy_ranges.emplace_back();
+    uint32_t offset = 0;
+    for (const Range& rest : ranges[m]) {
+      Range r = rest;
+      r.vertex_offset = uint32_t(vertices.size());
+      vertices.insert(vertices.end(), vertices.begin() + first + offset, vertices.begin() + first + offset + rest.vertex_count);
+      offset += rest.vertex_count;
+      const gpu::GpuPrimitive& rp = prims[mesh_primitive_base_[m] + copy_ranges.back().size()];
+      prims.push_back({r.vertex_offset, rp.index_offset, rp.triangle_count, rp.material});
+      copy_ranges.back().push_back(r);
+    }
+  }
   std::vector<gpu::GpuMaterial> mats;
   for (const auto& m : scene_.materials) {
     mats.push_back({glm::vec4(m.base_color, m.metallic), glm::vec4(m.emission, m.roughness), m.specular,
@@ -107,24 +131,40 @@ void GpuScene::upload_geometry() {
   primitives_ = gpu::make_buffer<gpu::GpuPrimitive>(ctx_, prims, gpu::k_storage_usage, gpu::Memory::Device, "primitives");
   materials_ = gpu::make_buffer<gpu::GpuMaterial>(ctx_, mats, gpu::k_storage_usage, gpu::Memory::Device, "materials");
 
-  for (size_t m = 0; m < scene_.meshes.size(); ++m) {
+  auto geometries = [&](const std::vector<Range>& rs) {
     std::vector<gpu::BlasTriangles> geoms;
-    for (const auto& r : ranges[m]) {
+    for (const auto& r : rs) {
       geoms.push_back({vertices_.address() + VkDeviceAddress(r.vertex_offset) * sizeof(gpu::GpuVertex), r.vertex_count,
                        uint32_t(sizeof(gpu::GpuVertex)), indices_.address() + VkDeviceAddress(r.index_offset) * sizeof(uint32_t),
                        r.triangle_count, r.opaque});
     }
-    blas_.emplace_back(ctx_, geoms);
+    return geoms;
+  };
+  for (size_t m = 0; m < scene_.meshes.size(); ++m) blas_.emplace_back(ctx_, geometries(ranges[m]));
+  if (!copies.empty()) {
+    for (const auto& rs : copy_ranges) layout.copy_geometries.push_back(geometries(rs));
+    deformation_ = std::make_unique<SceneDeformation>(ctx_, scene_, slot_count, layout, vertices_);
   }
 }
 
+void GpuScene::record_deformation(VkCommandBuffer cmd, const scene::FrameState& frame) {
+  if (!deformation_) return;
+  const int slot = keeps_history() && frames_ > 0 ? 1 - parity_ : parity_;  // the slot record_update writes next
+  deformation_->record(cmd, slot, frame);
+  if (keeps_history() && frames_ == 0) deformation_->record(cmd, 1 - slot, frame);  // the seeded slot
+  deformed_ = true;
+}
+
 glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState& frame) {
+  if (deformation_ && !deformed_) record_deformation(cmd, frame);
+  deformed_ = false;
   // With history the previous frame's slot stays untouched: temporal passes of this frame read it.
   if (keeps_history() && frames_ > 0) parity_ = 1 - parity_;
   glm::dvec3 origin(frame.camera.position);
   std::vector<gpu::GpuInstance> records;
   std::vector<VkAccelerationStructureInstanceKHR> tlas_instances;
   changes_.assign(scene_.instances.size(), 0u);
+  std::vector<size_t> deforming;  // instances whose records and TLAS entries differ by slot
   for (size_t i = 0; i < scene_.instances.size(); ++i) {
     uint32_t mesh = scene_.instances[i].lod_meshes[frame.lods[i]];
     glm::mat4 m = object_to_render(frame.transforms[i], origin);
@@ -135,6 +175,10 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
     if (frames_ > 0) {
       if (frame.transforms[i] != current_.transforms[i]) changes |= gpu::INSTANCE_CHANGED_TRANSFORM;
       if (frame.lods[i] != current_.lods[i]) changes |= gpu::INSTANCE_CHANGED_LOD;
+      if (deformation_ && deformation_->deforms(i) &&
+          (!std::ranges::equal(deformation_->joints_of(frame, i), deformation_->joints_of(current_, i)) ||
+           !std::ranges::equal(deformation_->weights_of(frame, i), deformation_->weights_of(current_, i))))
+        changes |= gpu::INSTANCE_CHANGED_SHAPE;
       if (changes && instance_emits_[i]) changes |= gpu::INSTANCE_CHANGED_EMISSION;
     }
     changes_[i] = changes;
@@ -147,12 +191,24 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
     vi.flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR;
     vi.accelerationStructureReference = blas_[mesh].address();
     tlas_instances.push_back(vi);
+    if (deformation_ && deformation_->deforms(i)) deforming.push_back(i);
   }
-  write_slot(cmd, slots_[size_t(parity_)], frame, origin, records, tlas_instances);
+  // A deforming instance's record and TLAS entry name the slot's own vertex copy and its BLAS, which
+  // record_deformation wrote first (render/scene_deform.h).
+  auto write = [&](int slot) {
+    if (deformation_) {
+      for (size_t i : deforming) {
+        records[i].primitive_base = deformation_->primitive_base(i, slot);
+        tlas_instances[i].accelerationStructureReference = deformation_->blas_address(i, slot);
+      }
+    }
+    write_slot(cmd, slots_[size_t(slot)], frame, origin, records, tlas_instances);
+  };
+  write(parity_);
   if (keeps_history() && frames_ == 0) {
     // The first frame has no predecessor: it seeds the other slot too, so that descriptor sets
     // always bind built objects (history_valid() stays false until the second frame).
-    write_slot(cmd, slots_[size_t(1 - parity_)], frame, origin, records, tlas_instances);
+    write(1 - parity_);
     ++seed_builds_;
   }
   if (keeps_history()) upload_swept_boxes(frame, origin);
@@ -196,7 +252,8 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
 }
 
 std::pair<glm::dvec3, glm::dvec3> GpuScene::world_bounds(const scene::FrameState& frame, size_t i) const {
-  const auto& [lo, hi] = mesh_bounds_[scene_.instances[i].lod_meshes[frame.lods[i]]];
+  const auto [lo, hi] = deformation_ && deformation_->deforms(i) ? deformation_->object_bounds(i, frame)
+                                                                  : mesh_bounds_[scene_.instances[i].lod_meshes[frame.lods[i]]];
   const glm::dmat4 m(frame.transforms[i]);
   glm::dvec3 wlo(std::numeric_limits<double>::max());
   glm::dvec3 whi(-std::numeric_limits<double>::max());
@@ -334,6 +391,7 @@ SceneMemory GpuScene::memory() const {
   if (lod_uv_) m.lod_uv = lod_uv_->bytes();
   if (textures_) m.textures = textures_->bytes();
   if (environment_) m.environment = environment_->bytes();
+  if (deformation_) m.deformation = deformation_->bytes();
   return m;
 }
 

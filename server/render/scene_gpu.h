@@ -19,6 +19,7 @@
 #include "include/scene_data.h"
 #include "render/emitters.h"
 #include "render/lod_uv_space.h"
+#include "render/scene_deform.h"
 #include "render/scene_environment.h"
 #include "render/scene_textures.h"
 #include "scene/scene.h"
@@ -33,6 +34,7 @@ struct SceneMemory {
   VkDeviceSize lod_uv = 0;         // LoD-aware reuse: UV BLASes, UV TLAS, LoD table (scenes with LoD groups, with history)
   VkDeviceSize textures = 0;       // texels, texture and level tables, material texture records, vertex extras (textured scenes)
   VkDeviceSize environment = 0;    // the environment map's radiance and sampling tables (scenes with a map)
+  VkDeviceSize deformation = 0;    // deforming instances' vertex copies' BLASes, jobs, morph targets, skins, frame matrices (scenes with them)
 };
 
 class GpuScene {
@@ -45,6 +47,10 @@ class GpuScene {
   // very first frame is written to both slots so that the previous slot is always valid to bind.
   // Returns the render-space origin (the camera position) used.
   glm::dvec3 record_update(VkCommandBuffer cmd, const scene::FrameState& frame);
+  // Records the deformation of the skinned and morphing instances into the slot(s) the next
+  // record_update writes (render/scene_deform.h): the pass `deform` and their BLAS updates. A caller
+  // that times it apart calls it first; else record_update does. Nothing for a scene without them.
+  void record_deformation(VkCommandBuffer cmd, const scene::FrameState& frame);
 
   const scene::Scene& scene() const { return scene_; }
   // The descriptor bindings of the scene bridge (shaders/include/scene_bridge.glsl), plus the
@@ -133,6 +139,8 @@ class GpuScene {
   // than the frame before's (an emitter's power, LoD level or the set of emitters changed).
   bool lights_reselected() const { return lights_reselected_; }
   bool has_emitters() const { return has_emitters_; }
+  // Skinned or morphing instances (render/scene_deform.h); null for a scene without.
+  const SceneDeformation* deformation() const { return deformation_.get(); }
   SceneMemory memory() const;
   uint64_t max_triangles_per_frame() const;
 
@@ -145,7 +153,7 @@ class GpuScene {
     std::vector<uint32_t> last_lods;  // of this TLAS's last build: a refit needs the same BLASes
     glm::dvec3 origin{0.0};
   };
-  void upload_geometry();
+  void upload_geometry(uint32_t slot_count, const std::vector<uint32_t>& copies);
   // World-space bounds of instance i in `frame`; the swept boxes of the changed ones, uploaded.
   std::pair<glm::dvec3, glm::dvec3> world_bounds(const scene::FrameState& frame, size_t i) const;
   void upload_swept_boxes(const scene::FrameState& frame, glm::dvec3 origin);
@@ -162,6 +170,8 @@ class GpuScene {
   std::unique_ptr<LodUvSpace> lod_uv_;          // with history, for scenes with LoD groups
   std::unique_ptr<SceneTextures> textures_;     // scenes with textures or alpha-tested materials
   std::unique_ptr<SceneEnvironment> environment_;  // scenes with an environment map
+  std::unique_ptr<SceneDeformation> deformation_;  // scenes with skinned or morphing instances
+  bool deformed_ = false;                       // record_deformation ran for the next record_update
   double environment_power_ = 0.0;
   gpu::Buffer lod_off_table_;                   // with history, without LoD groups: a header that says "off"
   bool lod_mapping_on_ = false;

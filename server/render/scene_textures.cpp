@@ -144,7 +144,7 @@ bool SceneTextures::needed(const scene::Scene& scene) {
   return false;
 }
 
-SceneTextures::SceneTextures(const gpu::Context& ctx, const scene::Scene& scene) {
+SceneTextures::SceneTextures(const gpu::Context& ctx, const scene::Scene& scene, std::span<const uint32_t> copied_meshes) {
   const bool extras = has_vertex_extras(scene);
   std::vector<gpu::GpuMaterialTextures> mats;
   for (const auto& m : scene.materials) {
@@ -179,6 +179,18 @@ SceneTextures::SceneTextures(const gpu::Context& ctx, const scene::Scene& scene)
         for (size_t v = 0; v < p.positions.size(); ++v) {
           gpu::GpuVertexExtra e{};
           if (!p.tangents.empty()) e.tangent = p.tangents[v];
+          if (!p.uvs1.empty()) e.uv1 = glm::vec4(p.uvs1[v], 0.0f, 0.0f);
+          vertex_extras.push_back(e);
+        }
+      }
+    }
+    // The deforming instances' vertex copies (render/scene_deform.h) have their mesh's TEXCOORD_1;
+    // their tangents are left to the deformed triangle (dP/du, include/scene_bridge_textures.glsl),
+    // since a rest tangent does not turn with a skinned or morphed normal.
+    for (uint32_t m : copied_meshes) {
+      for (const auto& p : scene.meshes[m].primitives) {
+        for (size_t v = 0; v < p.positions.size(); ++v) {
+          gpu::GpuVertexExtra e{};
           if (!p.uvs1.empty()) e.uv1 = glm::vec4(p.uvs1[v], 0.0f, 0.0f);
           vertex_extras.push_back(e);
         }

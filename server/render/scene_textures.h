@@ -5,6 +5,7 @@
 // only for scenes that have textures or alpha-tested materials: the passes of such a scene run
 // their textured variant (include/scene_bridge.glsl, STRATA_TEXTURES); other scenes bind none of it.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "gpu/buffer.h"
@@ -31,7 +32,8 @@ class SceneTextures {
   // alphaMode MASK, and BLEND (rendered as MASK at cutoff 0.5).
   static bool alpha_tested(const scene::Material& m) { return m.alpha_mode != scene::AlphaMode::kOpaque; }
 
-  SceneTextures(const gpu::Context& ctx, const scene::Scene& scene);
+  // `copied_meshes`: the meshes whose vertices follow the rest vertices (SceneDeformation::copied_meshes).
+  SceneTextures(const gpu::Context& ctx, const scene::Scene& scene, std::span<const uint32_t> copied_meshes = {});
 
   // Some material is alpha-tested (SPEC_ALPHA_TEST: rays are not forced opaque).
   bool any_alpha_tested() const { return alpha_tested_; }

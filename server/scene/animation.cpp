@@ -69,6 +69,15 @@ TransformKey sample_transform(const std::vector<TransformKey>& keys, float time)
   return out;
 }
 
+std::vector<float> sample_morph(const std::vector<MorphKey>& keys, float time) {
+  size_t i = 0;
+  float w = 0.0f;
+  if (!find_segment(keys, time, i, w)) return keys[i].weights;
+  std::vector<float> out(keys[i].weights.size());
+  for (size_t t = 0; t < out.size(); ++t) out[t] = mix_keys(keys[i].weights[t], keys[i + 1].weights[t], w);
+  return out;
+}
+
 float frame_time(uint32_t frame, float frames_per_second) {
   return static_cast<float>(static_cast<double>(frame) / static_cast<double>(frames_per_second));
 }
@@ -81,6 +90,12 @@ float animation_duration(const Animation& animation) {
   }
   if (!animation.lod_schedule.empty()) end = std::max(end, animation.lod_schedule.back().time);
   for (const LightTrack& track : animation.light_tracks) {
+    if (!track.keys.empty()) end = std::max(end, track.keys.back().time);
+  }
+  for (const JointTrack& track : animation.joint_tracks) {
+    if (!track.keys.empty()) end = std::max(end, track.keys.back().time);
+  }
+  for (const MorphTrack& track : animation.morph_tracks) {
     if (!track.keys.empty()) end = std::max(end, track.keys.back().time);
   }
   return end;
@@ -111,6 +126,23 @@ FrameState Scene::frame_state(uint32_t frame) const {
   for (const LightTrack& track : animation.light_tracks) {
     if (track.light < lights.size() && !track.keys.empty())
       state.lights[track.light] = compose_trs(sample_transform(track.keys, time));
+  }
+  // Every instance of a skin poses its joints alike; a client may pose each one apart.
+  std::vector<std::vector<glm::mat4>> skin_joints;
+  for (const Skin& skin : skins) skin_joints.push_back(skin.joints);
+  for (const JointTrack& track : animation.joint_tracks) {
+    if (track.skin < skin_joints.size() && track.joint < skin_joints[track.skin].size() && !track.keys.empty())
+      skin_joints[track.skin][track.joint] = compose_trs(sample_transform(track.keys, time));
+  }
+  state.joints.resize(instances.size());
+  state.morph_weights.resize(instances.size());
+  for (size_t i = 0; i < instances.size(); ++i) {
+    if (instances[i].skin >= 0 && size_t(instances[i].skin) < skin_joints.size()) state.joints[i] = skin_joints[size_t(instances[i].skin)];
+    state.morph_weights[i] = instances[i].morph_weights;
+  }
+  for (const MorphTrack& track : animation.morph_tracks) {
+    if (track.instance < instances.size() && !track.keys.empty())
+      state.morph_weights[track.instance] = sample_morph(track.keys, time);
   }
   // The schedule is sorted by time, so the last key at or before `time` wins.
   for (const LodKey& key : animation.lod_schedule) {

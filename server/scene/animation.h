@@ -12,6 +12,8 @@ namespace strata::scene {
 // `keys` must be non-empty and sorted by time.
 CameraKey sample_camera(const std::vector<CameraKey>& keys, float time);
 TransformKey sample_transform(const std::vector<TransformKey>& keys, float time);
+// Morph weights: linear per weight between keys (glTF's LINEAR), clamped outside them.
+std::vector<float> sample_morph(const std::vector<MorphKey>& keys, float time);
 
 // Time in seconds of frame `frame` at `frames_per_second`.
 float frame_time(uint32_t frame, float frames_per_second);

@@ -118,6 +118,8 @@ void check_components(const Source& s, const View& v, Components allowed) {
 
 int type_of_width(int width) {
   switch (width) {
+    case 16:
+      return TINYGLTF_TYPE_MAT4;
     case 1:
       return TINYGLTF_TYPE_SCALAR;
     case 2:
@@ -194,6 +196,33 @@ std::vector<uint32_t> read_indices(const Source& source, int index, const std::s
         source.fail(v.name, "has componentType " + std::to_string(v.component_type) +
                                 " (indices must be unsigned byte, short or int)");
     }
+  }
+  return out;
+}
+
+std::vector<glm::uvec4> read_joints(const Source& source, int index, const std::string& field) {
+  const View v = locate(source, index, field);
+  const bool narrow = v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                      v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  if (v.type != TINYGLTF_TYPE_VEC4 || v.normalized || !narrow)
+    source.fail(v.name, "must be a VEC4 of unsigned byte or unsigned short, not normalized");
+  std::vector<glm::uvec4> out(v.count);
+  for (size_t i = 0; i < v.count; ++i) {
+    const uint8_t* p = v.first + i * v.stride;
+    for (int c = 0; c < 4; ++c) {
+      out[i][c] = v.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE
+                      ? uint32_t(load<uint8_t>(p + c))
+                      : uint32_t(load<uint16_t>(p + 2 * c));
+    }
+  }
+  return out;
+}
+
+std::vector<glm::mat4> read_mat4(const Source& source, int index, const std::string& field) {
+  const std::vector<float> f = read_floats(source, index, 16, Components::kFloatOnly, field);
+  std::vector<glm::mat4> out(f.size() / 16);
+  for (size_t i = 0; i < out.size(); ++i) {
+    for (int k = 0; k < 16; ++k) out[i][k / 4][k % 4] = f[16 * i + size_t(k)];
   }
   return out;
 }

@@ -25,6 +25,9 @@ struct NodeTree {
   std::vector<int> parent;              // per node; -1 for roots
   std::vector<TransformKey> local_trs;  // per node: its TRS (a matrix node's decomposed)
   std::vector<glm::mat4> local_matrix;  // per node: its matrix (a TRS node's composed)
+  // Per node: its world transform at rest. Read for the nodes of the scene and for every skin's
+  // joints and their ancestors (joints may lie outside the scene); identity for other nodes.
+  std::vector<glm::mat4> world;
   std::vector<uint32_t> instance_node;  // per Scene instance: the node it came from
   int camera_node = -1;                 // the node Scene::camera came from
   std::vector<uint32_t> light_node;     // per Scene light: the node it is attached to
@@ -32,10 +35,14 @@ struct NodeTree {
 // Instances (one per node with a mesh, depth-first, MSFT_lod levels folded in) and the camera.
 NodeTree convert_nodes(const Source& source, Scene& scene);
 
+// glTF skins into Scene::skins, in order, and each instance's skin and morph weights (gltf_skins.cpp).
+void convert_skins(const Source& source, const NodeTree& tree, Scene& scene);
+
 // KHR_lights_punctual lights on the nodes of the scene, in node order (gltf_lights.cpp).
 void convert_lights(const Source& source, NodeTree& tree, Scene& scene);
 
-// Animation channels into InstanceTrack, LightTrack and camera keys (gltf_animation.cpp).
+// Animation channels into InstanceTrack, LightTrack, JointTrack, MorphTrack and camera keys
+// (gltf_animation.cpp).
 void convert_animations(const Source& source, const NodeTree& tree, Scene& scene);
 
 // A glTF rotation [x, y, z, w] as a unit quaternion. Rotations already unit length to 1e-3 are

@@ -3,10 +3,12 @@
 // animated, as glTF forbids `matrix` on animated nodes), then the camera node; both are the
 // scene's roots. Extra LoD levels are nodes outside the scene, named by the instance's MSFT_lod
 // ids; then one node per punctual light (KHR_lights_punctual, its rest transform as `matrix`, or
-// as an instance's when the light has a track). The default animation is one glTF animation: T/R/S
-// channels per instance and light track, T/R channels on the camera node. Textures, alpha modes and
-// the environment map: gltf_export_textures.h. Everything else strata needs rides in extras (see
-// gltf_extras.h).
+// as an instance's when the light has a track); then per skin a skeleton node (a root) with its
+// joints as children. Instance nodes carry their skin and morph weights (node.skin, node.weights).
+// The default animation is one glTF animation: T/R/S channels per instance, light and joint track,
+// a weights channel per morph track, T/R channels on the camera node. Textures, alpha modes and
+// the environment map: gltf_export_textures.h; skins, joints, weights and morph targets:
+// gltf_export_skins.h. Everything else strata needs rides in extras (see gltf_extras.h).
 // Exactness: floats go into float accessors or into JSON as doubles (which read back exactly);
 // an emission above 1 is split into emissiveFactor * emissiveStrength in double precision.
 #include <algorithm>
@@ -15,7 +17,8 @@
 
 #include <tiny_gltf.h>
 
-#include "scene/gltf_export_textures.h"
+#include "scene/gltf_export_builder.h"
+#include "scene/gltf_export_skins.h"
 #include "scene/gltf_extras.h"
 #include "scene/scene_io.h"
 #include "scene/transform.h"
@@ -23,65 +26,16 @@
 namespace strata::scene {
 namespace {
 
+using gltf::doubles;
+using gltf::GlbBuilder;
+using gltf::kArray;
+using gltf::kElements;
+using gltf::kFloat;
+using gltf::set_rest_transform;
+
 constexpr const char* kLodExtension = "MSFT_lod";
 constexpr const char* kEmissiveStrength = "KHR_materials_emissive_strength";
 constexpr const char* kSpecular = "KHR_materials_specular";
-
-class GlbBuilder {
- public:
-  GlbBuilder() {
-    model_.asset.version = "2.0";
-    model_.asset.generator = "strata";
-    model_.buffers.emplace_back();
-  }
-
-  tinygltf::Model& model() { return model_; }
-
-  void use_extension(const char* name) {
-    if (std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), name) ==
-        model_.extensionsUsed.end()) {
-      model_.extensionsUsed.emplace_back(name);
-    }
-  }
-
-  // An accessor over `data` (elements of `components` components of `component_type`), in a
-  // buffer view of its own. `with_bounds`: also min/max, which glTF requires for POSITION and
-  // animation inputs (float data only).
-  template <typename T>
-  int accessor(const std::vector<T>& data, int component_type, int type, size_t components,
-               int target, bool with_bounds) {
-    tinygltf::Accessor a;
-    a.bufferView = gltf::append_view(model_, reinterpret_cast<const uint8_t*>(data.data()), data.size() * sizeof(T));
-    model_.bufferViews.back().target = target;
-    a.componentType = component_type;
-    a.type = type;
-    a.count = data.size() * sizeof(T) /
-              (components * static_cast<size_t>(tinygltf::GetComponentSizeInBytes(
-                                static_cast<uint32_t>(component_type))));
-    if (with_bounds && a.count > 0)
-      bounds(reinterpret_cast<const float*>(data.data()), a.count, components, a);
-    model_.accessors.push_back(a);
-    return static_cast<int>(model_.accessors.size() - 1);
-  }
-
- private:
-  static void bounds(const float* f, size_t count, size_t components, tinygltf::Accessor& a) {
-    a.minValues.assign(f, f + components);
-    a.maxValues.assign(f, f + components);
-    for (size_t i = 0; i < count; ++i) {
-      for (size_t c = 0; c < components; ++c) {
-        a.minValues[c] = std::min(a.minValues[c], static_cast<double>(f[i * components + c]));
-        a.maxValues[c] = std::max(a.maxValues[c], static_cast<double>(f[i * components + c]));
-      }
-    }
-  }
-
-  tinygltf::Model model_;
-};
-
-constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
-constexpr int kArray = TINYGLTF_TARGET_ARRAY_BUFFER;
-constexpr int kElements = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
 
 void add_material(GlbBuilder& b, const Material& m) {
   tinygltf::Material out;
@@ -109,7 +63,7 @@ void add_material(GlbBuilder& b, const Material& m) {
   b.model().materials.push_back(out);
 }
 
-tinygltf::Primitive primitive(GlbBuilder& b, const Primitive& p) {
+tinygltf::Primitive primitive(GlbBuilder& b, const Primitive& p, const std::string& field) {
   tinygltf::Primitive out;
   out.mode = TINYGLTF_MODE_TRIANGLES;
   out.material = static_cast<int>(p.material);
@@ -127,11 +81,8 @@ tinygltf::Primitive primitive(GlbBuilder& b, const Primitive& p) {
     out.indices = b.accessor(p.indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
                              1, kElements, false);
   }
+  gltf::export_primitive_deformation(b, p, field, out);
   return out;
-}
-
-std::vector<double> doubles(std::initializer_list<float> values) {
-  return {values.begin(), values.end()};
 }
 
 // One sampler + channel animating `node`'s `path` with `values` at the times of accessor `input`.
@@ -172,13 +123,30 @@ void trs_channels(GlbBuilder& b, tinygltf::Animation& animation, int node, const
   channel(b, animation, input, node, "scale", scale, TINYGLTF_TYPE_VEC3, 3);
 }
 
-void add_animation(GlbBuilder& b, const Scene& s, int camera_node, const std::vector<int>& light_nodes) {
+// The nodes export_glb gives lights and skin joints.
+struct NodeMap {
+  std::vector<int> lights;               // per light
+  std::vector<std::vector<int>> joints;  // per skin, per joint
+};
+
+void add_animation(GlbBuilder& b, const Scene& s, int camera_node, const NodeMap& nodes) {
   tinygltf::Animation animation;
   animation.name = "default";
   for (const InstanceTrack& track : s.animation.tracks)
     if (!track.keys.empty()) trs_channels(b, animation, static_cast<int>(track.instance), track.keys);
   for (const LightTrack& track : s.animation.light_tracks)
-    if (!track.keys.empty()) trs_channels(b, animation, light_nodes[track.light], track.keys);
+    if (!track.keys.empty()) trs_channels(b, animation, nodes.lights[track.light], track.keys);
+  for (const JointTrack& track : s.animation.joint_tracks)
+    if (!track.keys.empty()) trs_channels(b, animation, nodes.joints[track.skin][track.joint], track.keys);
+  // Morph weights: one "weights" channel per track on the instance's node, the keys' weights in
+  // order (glTF 2.0 3.11: per key, one weight per target).
+  for (const MorphTrack& track : s.animation.morph_tracks) {
+    if (track.keys.empty()) continue;
+    std::vector<float> weights;
+    for (const MorphKey& k : track.keys) weights.insert(weights.end(), k.weights.begin(), k.weights.end());
+    channel(b, animation, time_accessor(b, track.keys), static_cast<int>(track.instance), "weights", weights,
+            TINYGLTF_TYPE_SCALAR, 1);
+  }
   if (!s.animation.camera.empty()) {
     const int input = time_accessor(b, s.animation.camera);
     std::vector<glm::vec3> position;
@@ -202,23 +170,7 @@ std::vector<bool> animated_targets(const std::vector<Track>& tracks, size_t coun
   return animated;
 }
 
-// A node's rest transform: TRS where the node is animated (glTF forbids `matrix` on animated
-// nodes; the exact matrix then rides in extras), else the matrix.
-void set_rest_transform(tinygltf::Node& node, const glm::mat4& transform, bool animated) {
-  if (animated) {
-    const TransformKey trs = decompose_trs(transform);
-    node.translation = doubles({trs.translation.x, trs.translation.y, trs.translation.z});
-    node.rotation = doubles({trs.rotation.x, trs.rotation.y, trs.rotation.z, trs.rotation.w});
-    node.scale = doubles({trs.scale.x, trs.scale.y, trs.scale.z});
-    return;
-  }
-  for (int c = 0; c < 4; ++c) {
-    for (int r = 0; r < 4; ++r) node.matrix.push_back(transform[c][r]);
-  }
-}
-
-// Returns the node of each punctual light.
-std::vector<int> add_nodes(GlbBuilder& b, const Scene& s) {
+NodeMap add_nodes(GlbBuilder& b, const Scene& s) {
   tinygltf::Model& m = b.model();
   const std::vector<bool> animated =
       animated_targets(s.animation.tracks, s.instances.size(), [](const InstanceTrack& t) { return size_t(t.instance); });
@@ -232,6 +184,8 @@ std::vector<int> add_nodes(GlbBuilder& b, const Scene& s) {
     node.mesh = static_cast<int>(instance.lod_meshes[0]);
     set_rest_transform(node, instance.transform, animated[i]);
     node.extras = gltf::node_extras(instance, animated[i]);
+    node.skin = instance.skin;
+    node.weights.assign(instance.morph_weights.begin(), instance.morph_weights.end());
     m.nodes.push_back(node);
     scene.nodes.push_back(static_cast<int>(i));
   }
@@ -265,7 +219,7 @@ std::vector<int> add_nodes(GlbBuilder& b, const Scene& s) {
         tinygltf::Value(tinygltf::Value::Object{{"ids", tinygltf::Value(ids)}});
     b.use_extension(kLodExtension);
   }
-  std::vector<int> light_nodes;
+  NodeMap nodes;
   const std::vector<bool> animated_lights =
       animated_targets(s.animation.light_tracks, s.lights.size(), [](const LightTrack& t) { return size_t(t.light); });
   for (size_t i = 0; i < s.lights.size(); ++i) {
@@ -284,19 +238,37 @@ std::vector<int> add_nodes(GlbBuilder& b, const Scene& s) {
     tinygltf::Node node;
     node.name = light.name;
     set_rest_transform(node, light.transform, animated_lights[i]);
-    if (animated_lights[i]) node.extras = gltf::light_node_extras(light.transform);
+    if (animated_lights[i]) node.extras = gltf::rest_matrix_extras(light.transform);
     node.extensions["KHR_lights_punctual"] =
         tinygltf::Value(tinygltf::Value::Object{{"light", tinygltf::Value(static_cast<int>(i))}});
     m.nodes.push_back(node);
     scene.nodes.push_back(static_cast<int>(m.nodes.size() - 1));
-    light_nodes.push_back(static_cast<int>(m.nodes.size() - 1));
+    nodes.lights.push_back(static_cast<int>(m.nodes.size() - 1));
   }
+  nodes.joints = gltf::export_skins(b, s, scene.nodes);
   m.scenes.push_back(scene);
   m.defaultScene = 0;
-  return light_nodes;
+  return nodes;
 }
 
 }  // namespace
+
+namespace gltf {
+
+void set_rest_transform(tinygltf::Node& node, const glm::mat4& transform, bool animated) {
+  if (animated) {
+    const TransformKey trs = decompose_trs(transform);
+    node.translation = doubles({trs.translation.x, trs.translation.y, trs.translation.z});
+    node.rotation = doubles({trs.rotation.x, trs.rotation.y, trs.rotation.z, trs.rotation.w});
+    node.scale = doubles({trs.scale.x, trs.scale.y, trs.scale.z});
+    return;
+  }
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) node.matrix.push_back(transform[c][r]);
+  }
+}
+
+}  // namespace gltf
 
 std::vector<uint8_t> export_glb(const Scene& scene) {
   try {
@@ -310,11 +282,14 @@ std::vector<uint8_t> export_glb(const Scene& scene) {
   for (const Mesh& mesh : scene.meshes) {
     tinygltf::Mesh out;
     out.name = mesh.name;
-    for (const Primitive& p : mesh.primitives) out.primitives.push_back(primitive(b, p));
+    const std::string field = "meshes[" + std::to_string(b.model().meshes.size()) + "].primitives[";
+    for (size_t p = 0; p < mesh.primitives.size(); ++p)
+      out.primitives.push_back(primitive(b, mesh.primitives[p], field + std::to_string(p) + "]"));
+    out.weights.assign(mesh.weights.begin(), mesh.weights.end());
     b.model().meshes.push_back(out);
   }
-  const std::vector<int> light_nodes = add_nodes(b, scene);
-  add_animation(b, scene, static_cast<int>(scene.instances.size()), light_nodes);
+  const NodeMap nodes = add_nodes(b, scene);
+  add_animation(b, scene, static_cast<int>(scene.instances.size()), nodes);
   std::ostringstream stream;
   tinygltf::TinyGLTF writer;
   if (!writer.WriteGltfSceneToStream(&b.model(), stream, false, true)) {

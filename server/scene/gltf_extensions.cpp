@@ -162,32 +162,24 @@ void list_specular_parts(const Source& s, Scene& scene) {
 
 void list_core_features(const Source& s, Scene& scene) {
   const tinygltf::Model& m = s.model;
-  size_t skinned = 0;
-  for (const tinygltf::Node& n : m.nodes) skinned += n.skin >= 0 ? 1 : 0;
-  if (skinned > 0)
-    scene.ignored_features.push_back("skin on " + count_of(skinned, "node") +
-                                     " (rendered unskinned, in its bind pose)");
-
-  size_t morphed = 0, coloured = 0;
+  // Skins and morph targets are rendered; deltas of attributes other than POSITION and NORMAL are not.
+  std::map<std::string, size_t> other_deltas;  // attribute -> meshes whose targets displace it
+  size_t coloured = 0;
   for (const tinygltf::Mesh& mesh : m.meshes) {
-    bool has_targets = false;
+    std::set<std::string> names;
     for (const tinygltf::Primitive& p : mesh.primitives) {
-      has_targets = has_targets || !p.targets.empty();
       coloured += p.attributes.count("COLOR_0");
+      for (const std::map<std::string, int>& target : p.targets) {
+        for (const auto& [name, accessor] : target) {
+          if (name != "POSITION" && name != "NORMAL") names.insert(name);
+        }
+      }
     }
-    morphed += has_targets ? 1 : 0;
+    for (const std::string& name : names) ++other_deltas[name];
   }
-  size_t weight_channels = 0;
-  for (const tinygltf::Animation& a : m.animations) {
-    for (const tinygltf::AnimationChannel& c : a.channels) weight_channels += c.target_path == "weights";
-  }
-  if (morphed > 0) {
-    scene.ignored_features.push_back("morph targets on " + count_of(morphed, "mesh", "meshes") +
-                                     " (the base shape is rendered)");
-  }
-  if (weight_channels > 0) {
-    scene.ignored_features.push_back("morph weight animation on " +
-                                     count_of(weight_channels, "channel") + " (not played)");
+  for (const auto& [name, meshes] : other_deltas) {
+    scene.ignored_features.push_back("morph target " + name + " deltas on " + count_of(meshes, "mesh", "meshes") +
+                                     " (not applied: the rest pose's " + name + " is used)");
   }
   if (coloured > 0) {
     scene.ignored_features.push_back("COLOR_0 on " + count_of(coloured, "primitive") +

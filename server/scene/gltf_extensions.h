@@ -3,7 +3,7 @@
 // rendered (its content reaches the scene model and the renderer), or it is not; a file that
 // *requires* one that is not is refused by name, and one that merely *uses* it loads with the
 // extension listed in Scene::ignored_features, together with the core glTF features the scene
-// model leaves out (skins, morph targets, vertex colours, occlusion textures, ...).
+// model leaves out (vertex colours, occlusion textures, morph target TANGENT deltas, ...).
 #include <cstdint>
 #include <span>
 #include <string>
@@ -24,8 +24,8 @@ bool is_rendered_extension(std::string_view name);
 void refuse_required_extensions(std::span<const uint8_t> json, const std::string& label);
 
 // Appends to scene.ignored_features one phrase per extension the file uses that strata does not
-// render ("KHR_materials_clearcoat on 3 materials") and per core feature left out ("skin on 1 node
-// (rendered unskinned, in its bind pose)").
+// render ("KHR_materials_clearcoat on 3 materials") and per core feature left out ("COLOR_0 on 1
+// primitive (vertex colours are not rendered)").
 void list_ignored_features(const Source& source, Scene& scene);
 
 // "1 material", "3 materials"; `plural` defaults to singular + "s".

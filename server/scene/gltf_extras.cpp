@@ -126,7 +126,7 @@ Value node_extras(const Instance& instance, bool write_rest_matrix) {
   return Value(Value::Object{{"strata", Value(std::move(strata))}});
 }
 
-Value light_node_extras(const glm::mat4& rest_matrix) {
+Value rest_matrix_extras(const glm::mat4& rest_matrix) {
   return Value(Value::Object{{"strata", Value(Value::Object{{"rest_matrix", matrix_value(rest_matrix)}})}});
 }
 

@@ -6,7 +6,9 @@
 // On an instance's node:
 //   extras.strata = {lod: level at frame 0, rest_matrix: [16 numbers, column-major]}
 // rest_matrix is written for animated instances, whose node must carry TRS rather than a
-// matrix: it keeps Instance::transform exact where TRS could only approximate it.
+// matrix: it keeps Instance::transform exact where TRS could only approximate it. Animated lights'
+// and skin joints' nodes carry it alone (their world transform at rest: Light::transform,
+// Skin::joints).
 #include <optional>
 
 #include <tiny_gltf.h>
@@ -20,8 +22,9 @@ namespace strata::scene::gltf {
 // when it is an object.
 tinygltf::Value scene_extras(const Scene& scene, const tinygltf::Value& environment_map = {});
 tinygltf::Value node_extras(const Instance& instance, bool write_rest_matrix);
-// An animated light node's extras: its exact rest transform (TRS alone may not compose back to it).
-tinygltf::Value light_node_extras(const glm::mat4& rest_matrix);
+// An animated light's or skin joint's node extras: its exact rest transform, world space (TRS alone
+// may not compose back to it).
+tinygltf::Value rest_matrix_extras(const glm::mat4& rest_matrix);
 
 // Applies extras.strata of `scene_index` to `scene`; false when the file has none.
 bool read_scene_extras(const Source& source, int scene_index, Scene& scene);

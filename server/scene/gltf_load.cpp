@@ -1,5 +1,5 @@
 // load_gltf_file and load_glb_bytes: read safely (gltf_read), convert (gltf_mesh, gltf_nodes,
-// gltf_animation, gltf_extras), validate. Files that strata did not write (no extras.strata) get
+// gltf_skins, gltf_animation, gltf_extras), validate. Files that strata did not write (no extras.strata) get
 // the glTF scene's name (else the file's stem), and a white environment of radiance 1 when no
 // material emits, so that they are visible at all; otherwise the environment is black. A file whose
 // scene has no triangles is refused: there is nothing to render.
@@ -49,6 +49,7 @@ Scene convert(const tinygltf::Model& model, const std::string& label,
   gltf::convert_material_textures(source, scene);
   gltf::convert_meshes(source, scene);
   gltf::NodeTree tree = gltf::convert_nodes(source, scene);
+  gltf::convert_skins(source, tree, scene);
   gltf::convert_lights(source, tree, scene);
   require_geometry(source, tree, scene);
   gltf::convert_animations(source, tree, scene);

@@ -4,6 +4,8 @@
 
 #include "scene/gltf_accessor.h"
 #include "scene/gltf_convert.h"
+#include "scene/gltf_extensions.h"
+#include "scene/gltf_mesh_deform.h"
 #include "scene/normals.h"
 
 namespace strata::scene::gltf {
@@ -39,6 +41,8 @@ float specular_factor(const Source& s, const tinygltf::Material& m, const std::s
 struct MeshState {
   size_t triangles = 0;
   std::optional<uint32_t> default_material;
+  size_t target_vertices = 0;  // morph target vertices over the file (gltf_mesh_deform.h)
+  size_t renormalised = 0;     // vertices of the current mesh whose WEIGHTS_0 were renormalised
 };
 
 uint32_t material_of(const Source& s, const tinygltf::Primitive& p, const std::string& field,
@@ -198,6 +202,10 @@ Primitive convert_primitive(const Source& s, const tinygltf::Primitive& p, const
     }
   }
   read_texture_attributes(s, p, field, scene.materials[out.material], vertices, out);
+  state.renormalised += read_skin_attributes(s, p, field, vertices, out);
+  read_morph_targets(s, p, field, vertices, state.target_vertices, out);
+  // Normals a file leaves out are generated from the rest pose, with no morph target applied; a
+  // target's NORMAL deltas (when it has any) move them as they would move the file's own normals.
   if (out.normals.empty()) {
     out.normals = area_weighted_normals(out.positions, out.indices);
   } else {
@@ -244,9 +252,17 @@ void convert_meshes(const Source& s, Scene& scene) {
     }
     Mesh out;
     out.name = mesh.name;
+    state.renormalised = 0;
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       out.primitives.push_back(convert_primitive(
           s, mesh.primitives[p], at(at("meshes", m) + ".primitives", p), scene, state));
+    }
+    out.weights = read_mesh_weights(s, mesh, at("meshes", m), out);
+    if (state.renormalised > 0) {
+      scene.ignored_features.push_back(
+          "WEIGHTS_0 renormalised on " + count_of(state.renormalised, "vertex", "vertices") + " of " +
+          (mesh.name.empty() ? at("meshes", m) : "mesh '" + mesh.name + "'") +
+          " (their sums were off 1 by more than 1e-3)");
     }
     scene.meshes.push_back(std::move(out));
   }

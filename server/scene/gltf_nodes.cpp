@@ -129,6 +129,31 @@ std::vector<int> lod_ids(const Source& s, size_t i) {
   return out;
 }
 
+// The transforms of every skin's joints and of their ancestors that lie outside the scene (a joint
+// need not be one of the scene's nodes), parents first, so that tree.world holds every joint's.
+void read_joint_chains(const Source& s, std::vector<bool>& placed, NodeTree& tree) {
+  const size_t n = s.model.nodes.size();
+  for (size_t k = 0; k < s.model.skins.size(); ++k) {
+    const std::vector<int>& joints = s.model.skins[k].joints;
+    for (size_t j = 0; j < joints.size(); ++j) {
+      s.check_index(at(at("skins", k) + ".joints", j), joints[j], n, "nodes");
+      std::vector<int> chain;  // the joint, then its ancestors up to the first one placed
+      for (int node = joints[j]; node >= 0 && !placed[size_t(node)]; node = tree.parent[size_t(node)]) {
+        if (chain.size() == n)
+          s.fail(at("nodes", size_t(joints[j])), "is its own ancestor (node hierarchies must be trees)");
+        chain.push_back(node);
+      }
+      for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+        const size_t i = size_t(*it);
+        read_local_transform(s, i, tree);
+        const int parent = tree.parent[i];
+        tree.world[i] = parent < 0 ? tree.local_matrix[i] : tree.world[size_t(parent)] * tree.local_matrix[i];
+        placed[i] = true;
+      }
+    }
+  }
+}
+
 // A camera framing every instance from +Z, for files without one.
 Camera framing_camera(const Scene& scene) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
@@ -171,7 +196,9 @@ NodeTree convert_nodes(const Source& s, Scene& scene) {
   link_parents(s, tree);
   const std::vector<int> order = depth_first(s, root_nodes(s, tree));
 
-  std::vector<glm::mat4> world(n, glm::mat4(1.0f));
+  tree.world.assign(n, glm::mat4(1.0f));
+  std::vector<glm::mat4>& world = tree.world;
+  std::vector<bool> placed(n, false);
   std::vector<std::vector<int>> lods(n);
   std::vector<bool> is_lod_level(n, false);
   for (int node : order) {
@@ -182,7 +209,9 @@ NodeTree convert_nodes(const Source& s, Scene& scene) {
                           : world[static_cast<size_t>(parent)] * tree.local_matrix[i];
     lods[i] = lod_ids(s, i);
     for (int id : lods[i]) is_lod_level[static_cast<size_t>(id)] = true;
+    placed[i] = true;
   }
+  read_joint_chains(s, placed, tree);
 
   bool have_camera = false;
   for (int node : order) {

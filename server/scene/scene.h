@@ -123,6 +123,15 @@ struct Material {
   bool operator==(const Material&) const = default;
 };
 
+// A glTF morph target of a primitive: per vertex, displacements added to the positions and normals
+// in proportion to the target's weight (glTF 2.0 3.7.2.2). `normals` is empty when the target
+// leaves the normals alone.
+struct MorphTarget {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  bool operator==(const MorphTarget&) const = default;
+};
+
 // One glTF primitive: an indexed triangle list with one material. Attribute arrays have equal length.
 struct Primitive {
   std::vector<glm::vec3> positions;
@@ -135,6 +144,12 @@ struct Primitive {
   std::vector<glm::vec4> tangents;
   std::vector<uint32_t> indices;   // 3 per triangle
   uint32_t material = 0;
+  // Skinned meshes (JOINTS_0, WEIGHTS_0): per vertex up to 4 joints of the instance's skin and their
+  // weights, which sum to 1; both empty when the mesh is not skinned.
+  std::vector<glm::uvec4> joints;
+  std::vector<glm::vec4> weights;
+  // Morph targets, as many as Mesh::weights; empty when the mesh has none.
+  std::vector<MorphTarget> targets;
   size_t triangle_count() const { return indices.size() / 3; }
   bool operator==(const Primitive&) const = default;
 };
@@ -143,7 +158,22 @@ struct Primitive {
 struct Mesh {
   std::string name;
   std::vector<Primitive> primitives;
+  // Default morph target weights (glTF mesh.weights), one per target of every primitive; empty
+  // when the mesh has no morph targets.
+  std::vector<float> weights;
   bool operator==(const Mesh&) const = default;
+};
+
+// A glTF skin: the joints a skinned mesh's vertices follow (linear blend skinning). Joint j moves a
+// vertex by S_j = inverse(T) J_j B_j, in the object space of the instance whose transform is T,
+// where J_j is the joint's joint-to-world transform at the frame (FrameState::joints) and B_j its
+// inverse bind matrix; the instance's transform then applies as for any mesh, so the vertex lands at
+// J_j B_j v in world space whatever the instance's own transform is (glTF 2.0 3.7.3).
+struct Skin {
+  std::string name;
+  std::vector<glm::mat4> inverse_bind;  // per joint (B_j)
+  std::vector<glm::mat4> joints;        // per joint: joint to world at rest (J_j without animation)
+  bool operator==(const Skin&) const = default;
 };
 
 // A node with a mesh, flattened to a world transform. With MSFT_lod, lod_meshes lists every level
@@ -153,6 +183,12 @@ struct Instance {
   std::vector<uint32_t> lod_meshes;  // at least one entry
   glm::mat4 transform{1.0f};         // object to world
   uint32_t lod = 0;                  // level at frame 0
+  // A deforming instance has one level. skin: into Scene::skins, for a mesh with joints and
+  // weights (-1: not skinned). morph_weights: its mesh's targets' weights at rest (the node's
+  // weights, else the mesh's); empty when the mesh has no targets.
+  int32_t skin = -1;
+  std::vector<float> morph_weights;
+  bool deforms() const { return skin >= 0 || !morph_weights.empty(); }
   bool operator==(const Instance&) const = default;
 };
 
@@ -240,6 +276,22 @@ struct LightTrack {  // replaces the light's transform while it has keys
   std::vector<TransformKey> keys;
   bool operator==(const LightTrack&) const = default;
 };
+struct JointTrack {  // replaces the joint's joint-to-world transform while it has keys
+  uint32_t skin = 0;
+  uint32_t joint = 0;
+  std::vector<TransformKey> keys;
+  bool operator==(const JointTrack&) const = default;
+};
+struct MorphKey {
+  float time = 0.0f;
+  std::vector<float> weights;  // one per morph target of the instance's mesh; linear between keys
+  bool operator==(const MorphKey&) const = default;
+};
+struct MorphTrack {  // replaces the instance's morph weights while it has keys
+  uint32_t instance = 0;
+  std::vector<MorphKey> keys;
+  bool operator==(const MorphTrack&) const = default;
+};
 struct LodKey {  // from `time` on, `instance` uses `level`
   float time = 0.0f;
   uint32_t instance = 0;
@@ -252,6 +304,8 @@ struct Animation {
   std::vector<InstanceTrack> tracks;
   std::vector<LodKey> lod_schedule;  // sorted by time
   std::vector<LightTrack> light_tracks;
+  std::vector<JointTrack> joint_tracks;
+  std::vector<MorphTrack> morph_tracks;
   bool operator==(const Animation&) const = default;
 };
 
@@ -261,6 +315,10 @@ struct FrameState {
   std::vector<glm::mat4> transforms;  // per instance, object to world
   std::vector<uint32_t> lods;         // per instance, level in use
   std::vector<glm::mat4> lights;      // per light, light to world
+  // Per instance: a skinned instance's joints, joint to world (its skin's J_j); empty when not skinned.
+  std::vector<std::vector<glm::mat4>> joints;
+  // Per instance: its morph target weights; empty when its mesh has no targets.
+  std::vector<std::vector<float>> morph_weights;
   // Where the shutter opened (scene/shutter.h): over the shutter the camera moves from it to
   // `camera` (RS-supp 3.3.1). None: the frame is an instant (shutter closed, or nothing moved).
   std::optional<Camera> camera_open;
@@ -273,6 +331,7 @@ struct Scene {
   TextureSet textures;
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;
+  std::vector<Skin> skins;
   std::vector<Light> lights;
   Camera camera;
   Environment environment;

@@ -34,7 +34,8 @@ Scene load_glb_bytes(std::span<const uint8_t> bytes, const std::string& label,
 // load_glb_bytes(export_glb(s)) == s for every built-in scene. Punctual lights are written
 // (KHR_lights_punctual, one node each at its rest transform, their tracks as animation channels);
 // textures (each image's finest level as PNG), samplers, KHR_texture_transform and alpha modes;
-// the environment map in `extras`. Scene::ignored_features are not written (no built-in scene has
+// skins (joints as nodes at their rest transforms), JOINTS_0 / WEIGHTS_0, morph targets, mesh and
+// node weights, joint and morph tracks; the environment map in `extras`. Scene::ignored_features are not written (no built-in scene has
 // them).
 std::vector<uint8_t> export_glb(const Scene& scene);
 void export_glb_file(const Scene& scene, const std::filesystem::path& path);

@@ -1,7 +1,10 @@
 // Scene::validate and Scene::triangle_count: the invariants every producer of a Scene (loaders,
 // built-in generators, clients) must meet before the renderer sees it.
+#include <algorithm>
 #include <cmath>
+#include <set>
 #include <string>
+#include <utility>
 
 #include "scene/scene.h"
 
@@ -85,6 +88,32 @@ void validate_material(const std::string& field, const Material& m) {
   check_finite(field + ".normal_scale", m.normal_scale);
 }
 
+void check_count_of(const std::string& field, size_t count, size_t expected, const char* what) {
+  if (count != expected)
+    fail(field, "has " + std::to_string(count) + " entries, not one per " + what + " (" + std::to_string(expected) + ")");
+}
+void check_count(const std::string& field, size_t count, size_t vertices) {
+  check_count_of(field, count, vertices, "vertex");
+}
+
+// Joints and weights (both empty, or one per vertex) and morph targets (one delta per vertex).
+void validate_deformation(const std::string& field, const Primitive& p) {
+  const size_t n = p.positions.size();
+  if (!p.joints.empty() || !p.weights.empty()) {
+    check_count(field + ".joints", p.joints.size(), n);
+    check_count(field + ".weights", p.weights.size(), n);
+  }
+  for (size_t i = 0; i < p.weights.size(); ++i) check_finite(at(field + ".weights", i), p.weights[i]);
+  for (size_t t = 0; t < p.targets.size(); ++t) {
+    const std::string target = at(field + ".targets", t);
+    check_count(target + ".positions", p.targets[t].positions.size(), n);
+    if (!p.targets[t].normals.empty()) check_count(target + ".normals", p.targets[t].normals.size(), n);
+    for (size_t i = 0; i < n; ++i) check_finite(at(target + ".positions", i), p.targets[t].positions[i]);
+    for (size_t i = 0; i < p.targets[t].normals.size(); ++i)
+      check_finite(at(target + ".normals", i), p.targets[t].normals[i]);
+  }
+}
+
 void validate_primitive(const std::string& field, const Primitive& p, const std::vector<Material>& materials) {
   const size_t material_count = materials.size();
   const size_t n = p.positions.size();
@@ -122,6 +151,7 @@ void validate_primitive(const std::string& field, const Primitive& p, const std:
     if (std::abs(glm::length(p.normals[i]) - 1.0f) > 1e-3f)
       fail(at(field + ".normals", i), "is not unit length");
   }
+  validate_deformation(field, p);
 }
 
 void validate_light(const std::string& field, const Light& l) {
@@ -161,6 +191,48 @@ void check_sorted(const std::string& field, const std::vector<Key>& keys) {
   }
 }
 
+void check_transform_keys(const std::string& field, const std::vector<TransformKey>& keys) {
+  check_sorted(field, keys);
+  for (size_t k = 0; k < keys.size(); ++k) {
+    check_finite(at(field, k) + ".translation", keys[k].translation);
+    check_finite(at(field, k) + ".rotation", keys[k].rotation);
+    check_finite(at(field, k) + ".scale", keys[k].scale);
+  }
+}
+
+// Joint tracks name a joint of a skin, morph tracks an instance with morph targets and one weight
+// per target in every key; neither has a second track for the same joint or instance.
+void validate_deform_tracks(const Scene& s) {
+  const Animation& a = s.animation;
+  std::set<std::pair<uint32_t, uint32_t>> joints;
+  for (size_t t = 0; t < a.joint_tracks.size(); ++t) {
+    const std::string field = at("animation.joint_tracks", t);
+    const JointTrack& track = a.joint_tracks[t];
+    check_index(field + ".skin", track.skin, s.skins.size(), "skins");
+    check_index(field + ".joint", track.joint, s.skins[track.skin].joints.size(), "joints");
+    if (!joints.insert({track.skin, track.joint}).second)
+      fail(field, "is a second track for joint " + std::to_string(track.joint) + " of skins[" +
+                      std::to_string(track.skin) + "]");
+    check_transform_keys(field + ".keys", track.keys);
+  }
+  std::set<uint32_t> instances;
+  for (size_t t = 0; t < a.morph_tracks.size(); ++t) {
+    const std::string field = at("animation.morph_tracks", t);
+    const MorphTrack& track = a.morph_tracks[t];
+    check_index(field + ".instance", track.instance, s.instances.size(), "instances");
+    const size_t targets = s.instances[track.instance].morph_weights.size();
+    if (targets == 0) fail(field + ".instance", "= " + std::to_string(track.instance) + " has no morph targets");
+    if (!instances.insert(track.instance).second)
+      fail(field + ".instance", "= " + std::to_string(track.instance) + " has a second morph track");
+    check_sorted(field + ".keys", track.keys);
+    for (size_t k = 0; k < track.keys.size(); ++k) {
+      const std::string key = at(field + ".keys", k) + ".weights";
+      check_count_of(key, track.keys[k].weights.size(), targets, "morph target");
+      for (size_t w = 0; w < targets; ++w) check_finite(at(key, w), track.keys[k].weights[w]);
+    }
+  }
+}
+
 void validate_animation(const Scene& s) {
   const Animation& a = s.animation;
   check_finite("animation.frames_per_second", a.frames_per_second);
@@ -178,23 +250,14 @@ void validate_animation(const Scene& s) {
     if (has_track[track.instance])
       fail(field + ".instance", "= " + std::to_string(track.instance) + " has a second track");
     has_track[track.instance] = true;
-    check_sorted(field + ".keys", track.keys);
-    for (size_t k = 0; k < track.keys.size(); ++k) {
-      check_finite(at(field + ".keys", k) + ".translation", track.keys[k].translation);
-      check_finite(at(field + ".keys", k) + ".rotation", track.keys[k].rotation);
-      check_finite(at(field + ".keys", k) + ".scale", track.keys[k].scale);
-    }
+    check_transform_keys(field + ".keys", track.keys);
   }
   for (size_t t = 0; t < a.light_tracks.size(); ++t) {
     const std::string field = at("animation.light_tracks", t);
     check_index(field + ".light", a.light_tracks[t].light, s.lights.size(), "lights");
-    check_sorted(field + ".keys", a.light_tracks[t].keys);
-    for (size_t k = 0; k < a.light_tracks[t].keys.size(); ++k) {
-      check_finite(at(field + ".keys", k) + ".translation", a.light_tracks[t].keys[k].translation);
-      check_finite(at(field + ".keys", k) + ".rotation", a.light_tracks[t].keys[k].rotation);
-      check_finite(at(field + ".keys", k) + ".scale", a.light_tracks[t].keys[k].scale);
-    }
+    check_transform_keys(field + ".keys", a.light_tracks[t].keys);
   }
+  validate_deform_tracks(s);
   check_sorted("animation.lod_schedule", a.lod_schedule);
   for (size_t k = 0; k < a.lod_schedule.size(); ++k) {
     const std::string field = at("animation.lod_schedule", k);
@@ -202,6 +265,58 @@ void validate_animation(const Scene& s) {
     check_index(field + ".instance", key.instance, s.instances.size(), "instances");
     check_index(field + ".level", key.level, s.instances[key.instance].lod_meshes.size(),
                 "LoD levels");
+  }
+}
+
+// Every primitive of a mesh has as many morph targets as the mesh has weights.
+void validate_mesh_weights(const std::string& field, const Mesh& mesh) {
+  for (size_t t = 0; t < mesh.weights.size(); ++t) check_finite(at(field + ".weights", t), mesh.weights[t]);
+  for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+    check_count_of(at(field + ".primitives", p) + ".targets", mesh.primitives[p].targets.size(),
+                   mesh.weights.size(), "weight of the mesh");
+  }
+}
+
+void validate_skin(const std::string& field, const Skin& skin) {
+  if (skin.joints.empty()) fail(field + ".joints", "is empty (a skin needs at least one joint)");
+  check_count_of(field + ".inverse_bind", skin.inverse_bind.size(), skin.joints.size(), "joint");
+  for (size_t j = 0; j < skin.joints.size(); ++j) {
+    check_finite(at(field + ".inverse_bind", j), skin.inverse_bind[j]);
+    check_finite(at(field + ".joints", j), skin.joints[j]);
+  }
+}
+
+// A skinned instance's mesh has joints on every primitive, naming joints of its skin; a morphing
+// instance has one weight per target of its mesh; a deforming instance has one LoD level.
+void validate_instance_deformation(const std::string& field, const Instance& instance, const Scene& s) {
+  if (instance.skin < -1 || instance.skin >= int64_t(s.skins.size()))
+    fail(field + ".skin", "= " + std::to_string(instance.skin) + " is neither -1 nor a skin (" +
+                              std::to_string(s.skins.size()) + " skins)");
+  if (instance.deforms() && instance.lod_meshes.size() != 1)
+    fail(field + ".lod_meshes", "has " + std::to_string(instance.lod_meshes.size()) +
+                                    " LoD levels; a deforming instance has one");
+  for (size_t l = 0; l < instance.lod_meshes.size(); ++l) {
+    check_count_of(field + ".morph_weights", instance.morph_weights.size(),
+                   s.meshes[instance.lod_meshes[l]].weights.size(),
+                   ("morph target of " + at("meshes", instance.lod_meshes[l])).c_str());
+  }
+  for (size_t t = 0; t < instance.morph_weights.size(); ++t)
+    check_finite(at(field + ".morph_weights", t), instance.morph_weights[t]);
+  if (instance.skin < 0) return;
+  const uint32_t mesh = instance.lod_meshes[0];
+  const size_t joint_count = s.skins[size_t(instance.skin)].joints.size();
+  for (size_t p = 0; p < s.meshes[mesh].primitives.size(); ++p) {
+    const Primitive& primitive = s.meshes[mesh].primitives[p];
+    const std::string joints = at(at("meshes", mesh) + ".primitives", p) + ".joints";
+    if (primitive.joints.empty()) fail(joints, "is empty, but " + field + " skins the mesh");
+    for (size_t v = 0; v < primitive.joints.size(); ++v) {
+      const uint32_t top = std::max({primitive.joints[v].x, primitive.joints[v].y, primitive.joints[v].z,
+                                     primitive.joints[v].w});
+      if (top >= joint_count) {
+        fail(at(joints, v), "names joint " + std::to_string(top) + ", but " + field + "'s skin, skins[" +
+                                std::to_string(instance.skin) + "], has " + std::to_string(joint_count) + " joints");
+      }
+    }
   }
 }
 
@@ -232,7 +347,9 @@ void Scene::validate() const {
     for (size_t p = 0; p < meshes[m].primitives.size(); ++p) {
       validate_primitive(at(at("meshes", m) + ".primitives", p), meshes[m].primitives[p], materials);
     }
+    validate_mesh_weights(at("meshes", m), meshes[m]);
   }
+  for (size_t k = 0; k < skins.size(); ++k) validate_skin(at("skins", k), skins[k]);
   // Instance ids live in 20 bits of a path sample, all ones reserved (shaders/restir/reservoir.h).
   if (instances.size() > kMaxInstances)
     fail("instances", "has " + std::to_string(instances.size()) + " entries; the limit is " +
@@ -247,6 +364,7 @@ void Scene::validate() const {
     }
     check_index(field + ".lod", instance.lod, instance.lod_meshes.size(), "LoD levels");
     check_finite(field + ".transform", instance.transform);
+    validate_instance_deformation(field, instance, *this);
   }
   for (size_t l = 0; l < lights.size(); ++l) validate_light(at("lights", l), lights[l]);
   validate_camera(camera);

@@ -24,6 +24,8 @@ struct PendingInput {
   std::map<uint32_t, glm::mat4> transforms;     // by instance id
   std::map<uint32_t, uint32_t> lods;            // by instance id
   std::map<uint32_t, glm::mat4> lights;         // light to world, by light id
+  std::map<uint32_t, std::map<uint32_t, glm::mat4>> joints;  // joint to world, by instance id and joint
+  std::map<uint32_t, std::vector<float>> morph_weights;      // by instance id
   v1::RenderOptions options;                    // only the fields that change
   std::optional<std::pair<uint32_t, uint32_t>> resolution;
   std::vector<v1::ImageEncoding> encodings;     // empty: unchanged

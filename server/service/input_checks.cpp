@@ -90,6 +90,22 @@ glm::mat4 check_transform(const v1::InstanceTransform& t, const std::string& fie
   return glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(rotation) * glm::scale(glm::mat4(1.0f), scale);
 }
 
+glm::mat4 check_joint_transform(const v1::JointTransform& t, const std::string& field) {
+  if (!t.has_translation()) fail_invalid(field + ".translation is required");
+  if (!t.has_rotation()) fail_invalid(field + ".rotation is required");
+  const glm::vec3 translation = check_vec3(t.translation(), field + ".translation", k_max_coordinate);
+  const glm::quat rotation = check_quaternion(t.rotation(), field + ".rotation");
+  glm::vec3 scale(1.0f);
+  if (t.has_scale()) {
+    scale = check_vec3(t.scale(), field + ".scale", k_max_scale);
+    for (int i = 0; i < 3; ++i)
+      if (std::fabs(scale[i]) < k_min_scale)
+        fail_invalid(field + ".scale." + "xyz"[i] + " = " + format_float(scale[i]) + " is smaller in magnitude than " +
+                     format_float(k_min_scale) + " (a degenerate transform)");
+  }
+  return glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(rotation) * glm::scale(glm::mat4(1.0f), scale);
+}
+
 glm::mat4 check_light_transform(const v1::LightTransform& t, const std::string& field) {
   if (!t.has_translation()) fail_invalid(field + ".translation is required");
   if (!t.has_rotation()) fail_invalid(field + ".rotation is required");

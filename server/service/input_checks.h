@@ -17,6 +17,7 @@ namespace v1 = ::strata::v1;
 
 constexpr float k_max_coordinate = 1e8f;  // metres from the origin
 constexpr float k_min_scale = 1e-6f, k_max_scale = 1e6f;
+constexpr float k_max_morph_weight = 16.0f;  // a morph target weight's magnitude (FrameInput.morph_weights)
 constexpr float k_max_aperture = 1e3f;    // metres
 
 std::string format_float(float v);
@@ -26,6 +27,8 @@ glm::vec3 check_vec3(const v1::Vec3& v, const std::string& field, float max_abs)
 glm::quat check_quaternion(const v1::Quaternion& q, const std::string& field);
 // Light to world from a LightTransform (translation and rotation required).
 glm::mat4 check_light_transform(const v1::LightTransform& t, const std::string& field);
+// A joint's joint to world (translation and rotation required, scale optional).
+glm::mat4 check_joint_transform(const v1::JointTransform& t, const std::string& field);
 
 // Position, orientation, field of view, thin lens and shutter (motion blur, RS-main 4.4).
 scene::Camera check_camera(const v1::Camera& c, const std::string& field);

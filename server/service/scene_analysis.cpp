@@ -55,6 +55,8 @@ v1::SceneAnalysis analyze_scene(const scene::Scene& s) {
     info->set_lod_levels(uint32_t(inst.lod_meshes.size()));
     info->set_lod(inst.lod);
     info->set_triangles(triangles_of(s, inst.lod_meshes.front()));
+    if (inst.skin >= 0) info->set_joints(uint32_t(s.skins[size_t(inst.skin)].joints.size()));
+    info->set_morph_targets(uint32_t(inst.morph_weights.size()));
     if (inst.lod_meshes.size() > 1) ++groups;
     emissive += emissive_triangles_of(s, inst.lod_meshes.at(std::min<size_t>(inst.lod, inst.lod_meshes.size() - 1)));
   }

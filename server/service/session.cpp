@@ -283,6 +283,9 @@ void Session::apply_locked(const PendingInput& input, std::string& reset_reason,
   for (const auto& [id, m] : input.transforms) frame_state_.transforms.at(id) = m;
   for (const auto& [id, level] : input.lods) frame_state_.lods.at(id) = level;
   for (const auto& [id, m] : input.lights) frame_state_.lights.at(id) = m;
+  for (const auto& [id, pose] : input.joints)
+    for (const auto& [j, m] : pose) frame_state_.joints.at(id).at(j) = m;
+  for (const auto& [id, w] : input.morph_weights) frame_state_.morph_weights.at(id) = w;
 }
 
 RenderedFrame Session::render(PendingInput input) {

@@ -39,7 +39,8 @@ CONST_DEF uint INSTANCE_FLAG_MIRRORED = 1u;  // negative determinant: front face
 CONST_DEF uint INSTANCE_CHANGED_TRANSFORM = 2u;  // its object-to-world transform
 CONST_DEF uint INSTANCE_CHANGED_LOD = 4u;        // its LoD level (another mesh, another topology)
 CONST_DEF uint INSTANCE_CHANGED_EMISSION = 8u;   // it emits and moved or switched level: the light it casts changed
-CONST_DEF uint INSTANCE_CHANGED = 14u;           // any of the above
+CONST_DEF uint INSTANCE_CHANGED_SHAPE = 16u;     // it deforms and its joints or morph weights changed: its vertices moved
+CONST_DEF uint INSTANCE_CHANGED = 30u;           // any of the above
 
 // The swept boxes of change tracking (docs/ARCHITECTURE.md, "Suffix replay"): for every instance
 // that changed since the previous frame, a render-space box (of this frame) holding its geometry in

@@ -9,6 +9,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "scene/deform.h"
 #include "scene/environment_map.h"
 
 namespace strata::test {
@@ -180,8 +181,21 @@ CpuScene build_cpu_scene(const scene::Scene& scene, const scene::FrameState& fra
     const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(m)));
     // A mirroring transform reverses the world-space winding; the front face stays the object's.
     const double orientation = glm::determinant(glm::dmat3(m)) < 0.0 ? -1.0 : 1.0;
+    // A skinned or morphing instance's vertices as the frame poses them (scene/deform.h).
+    std::vector<scene::SkinningMatrix> skinning;
+    if (instance.skin >= 0 && i < frame.joints.size())
+      skinning = scene::skinning_matrices(scene.skins.at(size_t(instance.skin)), frame.transforms[i], frame.joints[i]);
     for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
-      const scene::Primitive& prim = mesh.primitives[pi];
+      const scene::Primitive& rest = mesh.primitives[pi];
+      scene::Primitive posed;
+      if (instance.deforms()) {
+        posed = rest;
+        const std::vector<float>& weights = i < frame.morph_weights.size() ? frame.morph_weights[i] : instance.morph_weights;
+        scene::DeformedVertices d = scene::deform_primitive(rest, skinning, weights);
+        posed.positions = std::move(d.positions);
+        posed.normals = std::move(d.normals);
+      }
+      const scene::Primitive& prim = instance.deforms() ? posed : rest;
       const bool has_normals = !prim.normals.empty();
       if (prim.material >= scene.materials.size() || prim.indices.size() % 3 != 0 ||
           (has_normals && prim.normals.size() != prim.positions.size())) {

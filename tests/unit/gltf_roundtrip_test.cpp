@@ -1,8 +1,10 @@
-// export_glb / load_glb_bytes / load_gltf_file: every built-in scene comes back equal.
+// export_glb / load_glb_bytes / load_gltf_file: every built-in scene comes back equal, and so do
+// skins, morph targets and their tracks.
 #include <algorithm>
 #include <filesystem>
 #include <string>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
@@ -47,6 +49,9 @@ std::string first_difference(const Scene& a, const Scene& b) {
   if (a.animation.lod_schedule != b.animation.lod_schedule) return "animation.lod_schedule";
   if (a.lights != b.lights) return "lights";
   if (a.animation.light_tracks != b.animation.light_tracks) return "animation.light_tracks";
+  if (a.skins != b.skins) return "skins";
+  if (a.animation.joint_tracks != b.animation.joint_tracks) return "animation.joint_tracks";
+  if (a.animation.morph_tracks != b.animation.morph_tracks) return "animation.morph_tracks";
   return "";
 }
 
@@ -108,6 +113,79 @@ TEST(GltfExport, ALightTrackComesBackEqual) {
   EXPECT_EQ(export_glb(loaded), glb);
   // And the light moves: frame 15 (0.5 s at 30 fps) puts it at the second key.
   EXPECT_NE(loaded.frame_state(0).lights.at(0), loaded.frame_state(15).lights.at(0));
+}
+
+// cornell with a skinned box (two joints: one at rest, written as a matrix, one with a track,
+// written as TRS with its exact rest matrix in extras) and a morphing box (two targets, one without
+// normal deltas; mesh weights, other instance weights, and a morph track).
+Scene skinned_and_morphing_cornell() {
+  Scene s = builtin_scene("cornell");
+  size_t skinned = s.instances.size(), morphing = s.instances.size();
+  for (size_t i = 0; i < s.instances.size(); ++i) {
+    if (s.instances[i].lod_meshes.size() != 1) continue;
+    if (skinned == s.instances.size()) {
+      skinned = i;
+    } else if (s.instances[i].lod_meshes[0] != s.instances[skinned].lod_meshes[0]) {
+      morphing = i;
+      break;
+    }
+  }
+  EXPECT_LT(morphing, s.instances.size()) << "cornell needs two instances of different meshes";
+  if (morphing == s.instances.size()) return s;
+  Skin skin;
+  skin.name = "rig";
+  const glm::mat4 turn = glm::mat4_cast(glm::angleAxis(0.3f, glm::vec3(0, 0, 1)));
+  skin.joints = {glm::translate(glm::mat4(1.0f), {0.1f, 0.2f, 0.3f}),
+                 glm::translate(glm::mat4(1.0f), {0.0f, 1.0f, 0.0f}) * turn};
+  for (const glm::mat4& j : skin.joints) skin.inverse_bind.push_back(glm::inverse(j));
+  s.skins.push_back(skin);
+  s.instances[skinned].skin = 0;
+  for (Primitive& p : s.meshes[s.instances[skinned].lod_meshes[0]].primitives) {
+    for (size_t v = 0; v < p.positions.size(); ++v) {
+      p.joints.emplace_back(v % 2, 1 - v % 2, 0, 0);
+      p.weights.emplace_back(0.75f, 0.25f, 0.0f, 0.0f);
+    }
+  }
+  JointTrack joint{0, 1, {}};
+  for (int k = 0; k < 3; ++k) {
+    TransformKey key;
+    key.time = 0.5f * float(k);
+    key.translation = glm::vec3(0.0f, 1.0f, 0.1f * float(k));
+    key.rotation = glm::angleAxis(0.3f + 0.2f * float(k), glm::vec3(0, 0, 1));
+    joint.keys.push_back(key);
+  }
+  s.animation.joint_tracks.push_back(joint);
+
+  Mesh& mesh = s.meshes[s.instances[morphing].lod_meshes[0]];
+  mesh.weights = {0.1f, 0.0f};
+  for (Primitive& p : mesh.primitives) {
+    MorphTarget lift, shift;
+    for (size_t v = 0; v < p.positions.size(); ++v) {
+      lift.positions.emplace_back(0.0f, 0.2f, 0.0f);
+      lift.normals.emplace_back(0.01f * float(v % 3), 0.0f, 0.0f);
+      shift.positions.emplace_back(0.05f * float(v % 4), 0.0f, 0.0f);
+    }
+    p.targets = {lift, shift};
+  }
+  s.instances[morphing].morph_weights = {0.5f, 0.25f};
+  s.animation.morph_tracks.push_back(
+      MorphTrack{uint32_t(morphing), {{0.0f, {0.0f, 1.0f}}, {1.0f, {1.0f, 0.5f}}, {2.0f, {0.25f, 0.0f}}}});
+  s.validate();
+  return s;
+}
+
+TEST(GltfExport, SkinsAndMorphTargetsComeBackEqual) {
+  const Scene original = skinned_and_morphing_cornell();
+  ASSERT_EQ(original.skins.size(), 1u);
+  const std::vector<uint8_t> glb = export_glb(original);
+  const Scene loaded = load_glb_bytes(glb, "cornell-characters.glb");
+  EXPECT_EQ(first_difference(original, loaded), "");
+  EXPECT_TRUE(loaded == original);
+  EXPECT_EQ(export_glb(loaded), glb);
+  EXPECT_TRUE(loaded.ignored_features.empty());
+  // And both deform over time: the joint's and the weights' keys differ at frames 0 and 30.
+  EXPECT_NE(loaded.frame_state(0).joints, loaded.frame_state(30).joints);
+  EXPECT_NE(loaded.frame_state(0).morph_weights, loaded.frame_state(30).morph_weights);
 }
 
 TEST(GltfExport, RejectsAnInvalidScene) {

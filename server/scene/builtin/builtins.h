@@ -15,5 +15,6 @@ Scene make_overlap_uv();
 Scene make_stiff();
 Scene make_lod_bounce();
 Scene make_courtyard();  // textures, alpha-masked leaves, punctual lights and a sky map
+Scene make_characters();  // a skinned flag and a morphing blob in a lit room
 
 }  // namespace strata::scene::builtin

@@ -11,7 +11,7 @@ namespace {
 
 using Generator = Scene (*)();
 // The order is the order builtin_scene_names() reports; cornell, the default, comes first.
-constexpr std::array<std::pair<const char*, Generator>, 11> kBuiltins = {{
+constexpr std::array<std::pair<const char*, Generator>, 12> kBuiltins = {{
     {"cornell", builtin::make_cornell},
     {"cornell-lamps", builtin::make_cornell_lamps},
     {"carousel", builtin::make_carousel},
@@ -23,6 +23,7 @@ constexpr std::array<std::pair<const char*, Generator>, 11> kBuiltins = {{
     {"stiff", builtin::make_stiff},
     {"lod-bounce", builtin::make_lod_bounce},
     {"courtyard", builtin::make_courtyard},
+    {"characters", builtin::make_characters},
 }};
 
 }  // namespace
