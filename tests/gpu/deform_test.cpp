@@ -82,6 +82,16 @@ TEST_F(Deform, DeviceMatchesHostOnTheBuiltInScene) {
   check_frames(s, true, {0, 17, 18, 61});
 }
 
+// Debian's assimp-testmodels (installed by deploy/install-deps.sh): a skinned strip whose joint
+// turns, and a cube whose two morph targets animate.
+TEST_F(Deform, DeviceMatchesHostOnTheCorpus) {
+  const std::string corpus = "/usr/share/assimp/models/glTF2/";
+  const scene::Scene skin = scene::load_scene(corpus + "simple_skin/simple_skin.gltf");
+  check_frames(skin, true, {0, 15, 30});
+  const scene::Scene morph = scene::load_scene(corpus + "glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf");
+  check_frames(morph, true, {0, 20, 40});
+}
+
 // The deformation moves the vertices: frames 0 and 17 of the flag and the blob differ by far more
 // than the tolerance (the comparison above could not pass with rest vertices).
 TEST_F(Deform, FramesDiffer) {

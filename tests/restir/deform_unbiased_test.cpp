@@ -45,12 +45,7 @@ class DeformUnbiased : public GpuTest, public ::testing::WithParamInterface<Case
 TEST_P(DeformUnbiased, MatchesPathTracedReference) {
   const Case& c = GetParam();
   const scene::Scene s = scene::builtin_scene("characters");
-  const RunningImage ref = pt_reference(s, c.run, kReferenceRuns, kReferenceSpp);
-  RunningImage method(c.run.size, c.run.size);
-  for (uint32_t r = 0; r < kRuns; ++r) method.add(sequence_mean(s, c.run, 1000 + r));
-  const BiasReport report = compare_to_reference(method, ref, 4);
-  std::printf("%s: %s\n", c.name.c_str(), report.describe().c_str());
-  EXPECT_TRUE(report.passed) << c.name << ": " << report.describe();
+  expect_matches_pt(s, c.name, c.run, kRuns, kReferenceRuns, kReferenceSpp);
 }
 
 std::vector<Case> cases() {

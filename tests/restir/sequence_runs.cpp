@@ -1,5 +1,7 @@
 #include "restir/sequence_runs.h"
 
+#include <cstdio>
+
 #include "gpu/gpu_context.h"
 
 namespace strata::test {
@@ -52,6 +54,20 @@ RunningImage pt_reference(const scene::Scene& s, const SequenceRun& run, uint32_
     out.add(mean);
   }
   return out;
+}
+
+}  // namespace strata::test
+
+namespace strata::test {
+
+void expect_matches_pt(const scene::Scene& s, const std::string& name, const SequenceRun& run, uint32_t runs,
+                       uint32_t reference_runs, uint32_t reference_spp) {
+  const RunningImage ref = pt_reference(s, run, reference_runs, reference_spp);
+  RunningImage method(run.size, run.size);
+  for (uint32_t r = 0; r < runs; ++r) method.add(sequence_mean(s, run, 1000 + r));
+  const BiasReport report = compare_to_reference(method, ref, 4);
+  std::printf("%s: %s\n", name.c_str(), report.describe().c_str());
+  EXPECT_TRUE(report.passed) << name << ": " << report.describe();
 }
 
 }  // namespace strata::test

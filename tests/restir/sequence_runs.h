@@ -30,4 +30,11 @@ image::Image sequence_mean(const scene::Scene& s, const SequenceRun& run, uint32
 // `runs` independent pt renders (spp each) of frames 1 .. F-1, each frame from a fresh renderer.
 RunningImage pt_reference(const scene::Scene& s, const SequenceRun& run, uint32_t runs, uint32_t spp);
 
+// One unbiasedness case: `runs` runs of the method (seeds 1000 + r) against a pt reference of
+// `reference_runs` renders x `reference_spp` (seeds as pt_reference draws them), compared in 4 x 4
+// pixel blocks (support/unbiasedness.h); prints the report under `name` and fails the test when
+// the method's mean differs.
+void expect_matches_pt(const scene::Scene& s, const std::string& name, const SequenceRun& run, uint32_t runs,
+                       uint32_t reference_runs, uint32_t reference_spp);
+
 }  // namespace strata::test

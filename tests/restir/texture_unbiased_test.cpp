@@ -105,12 +105,7 @@ class TextureUnbiased : public GpuTest, public ::testing::WithParamInterface<Cas
 TEST_P(TextureUnbiased, MatchesPathTracedReference) {
   const Case& c = GetParam();
   const scene::Scene s = textured_cornell();
-  const RunningImage ref = pt_reference(s, c.run, kReferenceRuns, kReferenceSpp);
-  RunningImage method(c.run.size, c.run.size);
-  for (uint32_t r = 0; r < kRuns; ++r) method.add(sequence_mean(s, c.run, 1000 + r));
-  const BiasReport report = compare_to_reference(method, ref, 4);
-  std::printf("%s: %s\n", c.name.c_str(), report.describe().c_str());
-  EXPECT_TRUE(report.passed) << c.name << ": " << report.describe();
+  expect_matches_pt(s, c.name, c.run, kRuns, kReferenceRuns, kReferenceSpp);
 }
 
 std::vector<Case> cases() {

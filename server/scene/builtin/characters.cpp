@@ -1,7 +1,7 @@
 // characters: deforming meshes in a lit room, for the tests, the benchmarks and the eval of skinned
 // and morphing geometry (docs/ARCHITECTURE.md, "Deforming meshes").
 // The room: the Cornell box's walls and its ceiling light (2 m box, x in [-1, 1], y in [0, 2],
-// z in [-1, 1], open towards +z), plus a white ceiling bounce card.
+// z in [-1, 1], open towards +z), with a metal flag pole.
 // A flag (skinned): a 1.0 m x 0.6 m double-sided cloth of 16 x 8 quads on a pole, bound to a chain
 // of 5 joints 0.25 m apart along its width; every joint past the first turns about the pole's axis
 // by 0.35 sin(2 pi 0.8 t - 0.9 k) rad, so a wave runs along the cloth. Each vertex follows the two
@@ -86,13 +86,7 @@ Scene make_characters() {
   const uint32_t pole = b.material("pole", {0.8f, 0.8f, 0.8f}, 1.0f, 0.3f);
   const uint32_t glossy = b.material("blob", {0.9f, 0.55f, 0.2f}, 0.0f, 0.35f);
 
-  std::vector<Primitive> room;
-  room.push_back(quad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, white));  // floor, +Y
-  room.push_back(quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, white));  // ceiling, -Y
-  room.push_back(quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, white));  // back wall, +Z
-  room.push_back(quad({-1, 0, 1}, {0, 0, -2}, {0, 2, 0}, red));    // left wall, +X
-  room.push_back(quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}, green));   // right wall, -X
-  b.instance("room", b.mesh("room", std::move(room)));
+  b.instance("room", b.mesh("room", cornell_walls(white, red, green)));
   const glm::vec3 up(0.0f, 1.0f, 0.0f);
   b.instance("light", b.mesh("light", {facing_quad({0.0f, 1.99f, 0.0f}, -up, 0.47f, 0.38f, light)}));
   b.instance("pole", b.mesh("pole", {cylinder(0.02f, 1.7f, 16, pole)}),

@@ -22,14 +22,7 @@ Scene make_cornell() {
   const uint32_t green = b.matte("green", {0.14f, 0.45f, 0.091f});
   const uint32_t light = b.emitter("light", {17.0f, 12.0f, 4.0f});
 
-  // Walls face into the box: cross(u, v) points inwards.
-  std::vector<Primitive> room;
-  room.push_back(quad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, white));  // floor, +Y
-  room.push_back(quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, white));  // ceiling, -Y
-  room.push_back(quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, white));  // back wall, +Z
-  room.push_back(quad({-1, 0, 1}, {0, 0, -2}, {0, 2, 0}, red));    // left wall, +X
-  room.push_back(quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}, green));   // right wall, -X
-  b.instance("room", b.mesh("room", std::move(room)));
+  b.instance("room", b.mesh("room", cornell_walls(white, red, green)));
 
   const uint32_t tall = b.mesh("tall_box", {box({0.3f, 0.6f, 0.3f}, white)});
   const uint32_t short_box = b.mesh("short_box", {box({0.3f, 0.3f, 0.3f}, white)});

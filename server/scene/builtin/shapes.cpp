@@ -125,6 +125,17 @@ Primitive uv_sphere(float radius, uint32_t segments, uint32_t rings, uint32_t ma
   return p;
 }
 
+std::vector<Primitive> cornell_walls(uint32_t white, uint32_t red, uint32_t green) {
+  // Walls face into the box: cross(u, v) points inwards.
+  std::vector<Primitive> room;
+  room.push_back(quad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, white));  // floor, +Y
+  room.push_back(quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, white));  // ceiling, -Y
+  room.push_back(quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, white));  // back wall, +Z
+  room.push_back(quad({-1, 0, 1}, {0, 0, -2}, {0, 2, 0}, red));    // left wall, +X
+  room.push_back(quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}, green));   // right wall, -X
+  return room;
+}
+
 Primitive cylinder(float radius, float height, uint32_t segments, uint32_t material) {
   return lathe({{0, 0}, {radius, 0}, {radius, 0}, {radius, height}, {radius, height}, {0, height}},
                segments, material);

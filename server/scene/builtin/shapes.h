@@ -34,6 +34,11 @@ Primitive cylinder(float radius, float height, uint32_t segments,
 template <typename Height>
 Primitive height_field(float size, uint32_t n, uint32_t material, Height height);
 
+// The Cornell box's five walls, 2 m: x in [-1, 1], y in [0, 2], z in [-1, 1], open towards +z;
+// floor, ceiling and back wall of `white`, the left wall `red`, the right wall `green`, each facing
+// into the box.
+std::vector<Primitive> cornell_walls(uint32_t white, uint32_t red, uint32_t green);
+
 // Applies `m` to positions and normals (normals by the inverse transpose).
 Primitive transformed(Primitive p, const glm::mat4& m);
 // Appends `b` to `a` (same material assumed: a's is kept).
