@@ -53,8 +53,10 @@ std::vector<Case> cases() {
   return {
       {"gather_still_camera", {.method = "restir-gather", .state = still_camera}},
       {"gather_moving_camera", {.method = "restir-gather", .state = moving_camera}},
+      {"splat_still_camera", {.method = "restir-splat", .state = still_camera, .options = temporal_only}},
       {"splat_moving_camera", {.method = "restir-splat", .state = moving_camera, .options = temporal_only}},
       {"multilayer_still_camera", {.method = "restir-multilayer", .state = still_camera, .options = temporal_only}},
+      {"multilayer_moving_camera", {.method = "restir-multilayer", .state = moving_camera, .options = temporal_only}},
   };
 }
 

@@ -1,6 +1,8 @@
 // The command-line client against a stratad process: `strata stream` reproduces `stratad render`
 // byte for byte for the same seed (the domain map too), follows a camera/transform/LoD script, and
 // reports errors.
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -94,6 +96,56 @@ TEST(CliTest, CameraPathScriptDrivesCameraLodAndResolution) {
   EXPECT_EQ(img.width, 40u);
   EXPECT_EQ(img.height, 30u);
   EXPECT_EQ(std::stoull(last["statistics"]["paths"].get<std::string>()), 40u * 30u * 3u);
+}
+
+// A script that poses the characters scene's skinned flag (FrameInput.joint_poses): flat twice, then
+// folded back towards the wall, which narrows the flag's silhouette. Under the warm ceiling light
+// (radiance 17, 12, 4) every other surface reflects far more red than blue (blue under a quarter of
+// red for white), the blue cloth about as much of each: the share of pixels whose blue exceeds 0.6x
+// their red measures the flag.
+TEST(CliTest, CameraPathScriptPosesASkinnedInstance) {
+  TempDir dir;
+  Daemon daemon;
+  // The flag's 5 joints from the pole (x = -0.55, z = -0.25) 0.25 m apart, each turned `a` about +Y
+  // from the one before: joint to world of each.
+  auto pose = [](double a) {
+    std::string joints;
+    double heading = 0.0, x = -0.55, z = -0.25;
+    for (int k = 0; k < 5; ++k) {
+      if (k > 0) {
+        x += 0.25 * std::cos(heading);
+        z -= 0.25 * std::sin(heading);
+        heading += a;
+      }
+      joints += (k ? "," : "") + std::string("{\"joint\": ") + std::to_string(k) + ", \"translation\": {\"x\": " + std::to_string(x) +
+                ", \"y\": 1.35, \"z\": " + std::to_string(z) + "}, \"rotation\": {\"w\": " + std::to_string(std::cos(0.5 * heading)) +
+                ", \"y\": " + std::to_string(std::sin(0.5 * heading)) + "}}";
+    }
+    return "\"joint_poses\": [{\"instance_id\": 3, \"joints\": [" + joints + "]}]";
+  };
+  const fs::path script = dir.path / "pose.json";
+  std::ofstream(script) << "{\"frames\": [{\"animation_frame\": 0, " << pose(0.0) << "}, {" << pose(0.0) << "}, {" << pose(0.6)
+                        << "}]}";
+  const auto r = run_process({strata_path(), "stream", "--server", daemon.address(), "--scene", "characters", "--method", "pt",
+                              "--width", "48", "--height", "48", "--spp", "16", "--camera-path", script.string(), "--out",
+                              (dir.path / "out").string()},
+                             120s);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  double flag[3];
+  for (int f = 0; f < 3; ++f) {
+    const auto bytes = read_file(dir.path / "out" / ("frame_000" + std::to_string(f) + ".exr"));
+    const image::Image img = image::decode_exr(std::vector<uint8_t>(bytes.begin(), bytes.end()));
+    size_t n = 0;
+    for (size_t i = 0; i < img.rgba.size(); i += 4) {
+      if (img.rgba[i] > 0.0f && img.rgba[i + 2] > 0.6f * img.rgba[i]) ++n;
+    }
+    flag[f] = double(n) / double(img.width * img.height);
+  }
+  std::printf("flag share of the image: flat %.4f, flat again %.4f, folded %.4f\n", flag[0], flag[1], flag[2]);
+  // The same pose twice: the same silhouette but for noise at its edge; folded: a narrower one.
+  EXPECT_GT(flag[0], 0.05) << "the flat flag is not in view";
+  EXPECT_NEAR(flag[1], flag[0], 0.01);
+  EXPECT_LT(flag[2], flag[1] - 0.02) << "folding the flag did not narrow its silhouette: " << flag[1] << " -> " << flag[2];
 }
 
 TEST(CliTest, StrataStreamSendsRestirOptionsAndLogsReuse) {
