@@ -211,10 +211,7 @@ void SceneDeformation::record(VkCommandBuffer cmd, int slot, const scene::FrameS
 }
 
 std::pair<glm::vec3, glm::vec3> SceneDeformation::object_bounds(size_t instance, const scene::FrameState& frame) const {
-  const int first = copy_of_[instance];
-  size_t d = 0;
-  for (size_t i = 0; i < instance; ++i) d += copy_of_[i] >= 0 ? 1 : 0;
-  const Instance& di = instances_[first >= 0 ? d : 0];
+  const Instance& di = instances_[size_t(copy_of_[instance]) / slots_];
   glm::vec3 reach(0.0f);
   const auto w = weights_of(frame, instance);
   for (size_t t = 0; t < di.target_reach.size() && t < w.size(); ++t) reach += std::abs(w[t]) * di.target_reach[t];
