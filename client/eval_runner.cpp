@@ -130,8 +130,14 @@ ReferenceImage EvalClient::reference(const std::string& scene, uint32_t frame, c
   return out;
 }
 
+void EvalClient::ensure_compiled(const std::string& scene, const std::string& method, const EvalSettings& s) {
+  if (!compiled_.insert(scene + "|" + method).second) return;
+  wait_until_compiled(*stub_, scene_source(scene), scene, method, s, timeout());
+}
+
 void EvalClient::run_method(const std::string& scene, const std::string& method, uint32_t spp, const EvalSettings& s,
                             const std::function<void(MethodImage&&)>& on_frame) {
+  ensure_compiled(scene, method, s);
   EvalSession session(*stub_, scene_source(scene), scene, method, spp, s, timeout());
   for (uint32_t f = 0; f < s.frames; ++f) on_frame(session.next(f));
   session.finish();
@@ -141,6 +147,7 @@ void EvalClient::run_interleaved(const std::string& scene, const std::vector<std
                                  const EvalSettings& s, const std::function<void(size_t, MethodImage&&)>& on_frame) {
   // At most the server's max_sessions at once: more runs play in groups, each interleaved.
   const size_t group = std::max<size_t>(1, status_.limits().max_sessions());
+  for (const auto& [method, spp] : runs) ensure_compiled(scene, method, s);
   for (size_t first = 0; first < runs.size(); first += group) {
     const size_t end = std::min(runs.size(), first + group);
     std::vector<std::unique_ptr<EvalSession>> sessions;

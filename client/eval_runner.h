@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <set>
 #include <memory>
 #include <optional>
 #include <string>
@@ -92,6 +93,10 @@ class EvalClient {
  private:
   v1::SceneSource scene_source(const std::string& scene) const;
   std::chrono::milliseconds timeout() const;
+  // Before a method's first timed or scored run on a scene: waits until the daemon renders it with
+  // its own pipelines, not its progressive start's stand-in (eval_session.h, wait_until_compiled).
+  void ensure_compiled(const std::string& scene, const std::string& method, const EvalSettings& s);
+  std::set<std::string> compiled_;  // "scene|method" pairs ensure_compiled has seen through
 
   std::string address_;
   double timeout_s_;

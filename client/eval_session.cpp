@@ -1,6 +1,7 @@
 #include "eval_session.h"
 
 #include <stdexcept>
+#include <thread>
 
 #include "connection.h"
 #include "eval_frames.h"
@@ -8,9 +9,23 @@
 
 namespace strata::client {
 
+namespace {
+
+// A frame of the daemon's progressive start: rendered by the stand-in (pt) while the session's own
+// method compiles (docs/ARCHITECTURE.md, "First frames"). Its passes are pt's.
+bool from_stand_in(const v1::Frame& frame, const std::string& method) {
+  if (method == "pt" || method == "auto") return false;
+  for (const auto& p : frame.pass_ms())
+    if (p.pass() == "path_trace") return true;
+  return false;
+}
+
+}  // namespace
+
 EvalSession::EvalSession(v1::RenderService::Stub& stub, const v1::SceneSource& scene, const std::string& scene_name,
                          const std::string& method, uint32_t spp, const EvalSettings& s, std::chrono::milliseconds timeout)
     : stub_(stub), s_(s), what_(scene_name + ", " + method) {
+  method_ = parse_eval_method(method, s.restir).method;
   v1::CreateSessionRequest req;
   *req.mutable_scene() = scene;
   req.mutable_resolution()->set_width(s.width);
@@ -68,7 +83,28 @@ MethodImage EvalSession::next(uint32_t f) {
   m.gpu_ms = frame.gpu_ms_total();
   for (const auto& p : frame.pass_ms()) m.pass_ms[p.pass()] += p.ms();
   ++received_;
+  if (from_stand_in(frame, method_)) stand_in_frames_++;
   return m;
+}
+
+void wait_until_compiled(v1::RenderService::Stub& stub, const v1::SceneSource& scene, const std::string& scene_name,
+                         const std::string& method, const EvalSettings& s, std::chrono::milliseconds timeout) {
+  const std::string name = parse_eval_method(method, s.restir).method;
+  if (name == "pt" || name == "auto") return;
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  EvalSettings one = s;
+  one.frames = 1;
+  for (;;) {
+    EvalSession session(stub, scene, scene_name, method, 1, one, timeout);
+    session.next(0);
+    const bool compiled = session.stand_in_frames() == 0;
+    session.finish();
+    if (compiled) return;
+    if (std::chrono::steady_clock::now() > deadline)
+      throw std::runtime_error("strata eval (" + scene_name + ", " + method + "): the daemon still renders its stand-in while " + name +
+                               " compiles; try again later");
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+  }
 }
 
 void EvalSession::finish() {
@@ -79,6 +115,10 @@ void EvalSession::finish() {
   const grpc::Status deleted = delete_session();
   if (!st.ok()) throw RpcError("Stream (" + what_ + ")", st);
   if (!deleted.ok()) throw RpcError("DeleteSession", deleted);
+  if (stand_in_frames_ > 0 && received_ == s_.frames && s_.frames > 1)
+    throw std::runtime_error("Stream (" + what_ + "): " + std::to_string(stand_in_frames_) + " of " + std::to_string(received_) +
+                             " frames came from the daemon's stand-in (pt) while " + method_ +
+                             " compiled: they would be scored as " + method_);
 }
 
 }  // namespace strata::client

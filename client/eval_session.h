@@ -26,8 +26,11 @@ class EvalSession {
 
   // Sends frame f's input and waits for its frame; throws when the stream ends or answers another input.
   MethodImage next(uint32_t f);
-  // Ends the stream and deletes the session; throws with the status of either when it failed.
+  // Ends the stream and deletes the session; throws with the status of either when it failed, or
+  // when some of a full run's frames came from the daemon's stand-in instead of the method.
   void finish();
+  // Frames so far that the daemon's progressive start rendered with its stand-in (pt's passes).
+  uint32_t stand_in_frames() const { return stand_in_frames_; }
 
  private:
   grpc::Status delete_session();
@@ -40,6 +43,14 @@ class EvalSession {
   std::unique_ptr<grpc::ClientReaderWriter<v1::FrameInput, v1::Frame>> stream_;
   uint32_t received_ = 0;
   bool finished_ = false;
+  std::string method_;  // the method's name without its flags
+  uint32_t stand_in_frames_ = 0;
 };
+
+// Plays one frame of `method` in throwaway sessions until the daemon renders it with the method
+// itself rather than its progressive start's stand-in (its pipelines compiled), so that no timed or
+// scored frame is the stand-in's; nothing for pt and auto. Throws after `timeout`.
+void wait_until_compiled(v1::RenderService::Stub& stub, const v1::SceneSource& scene, const std::string& scene_name,
+                         const std::string& method, const EvalSettings& s, std::chrono::milliseconds timeout);
 
 }  // namespace strata::client
