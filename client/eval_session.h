@@ -31,6 +31,9 @@ class EvalSession {
   void finish();
   // Frames so far that the daemon's progressive start rendered with its stand-in (pt's passes).
   uint32_t stand_in_frames() const { return stand_in_frames_; }
+  // Whether the last frame's pass decisions say that some of the method's pipelines are still
+  // compiling (a stand-in frame, or history passes held).
+  bool compiling();
 
  private:
   grpc::Status delete_session();
@@ -45,6 +48,9 @@ class EvalSession {
   bool finished_ = false;
   std::string method_;  // the method's name without its flags
   uint32_t stand_in_frames_ = 0;
+  bool probe_ = false;  // a throwaway session of wait_until_compiled: stand-in frames are expected
+  friend void wait_until_compiled(v1::RenderService::Stub&, const v1::SceneSource&, const std::string&, const std::string&,
+                                  const EvalSettings&, std::chrono::milliseconds);
 };
 
 // Plays one frame of `method` in throwaway sessions until the daemon renders it with the method
