@@ -39,19 +39,6 @@ std::vector<gpu::GpuAliasEntry> build_alias_table(std::span<const double> weight
   return table;
 }
 
-std::vector<glm::vec3> deformed_positions(const scene::Scene& scene, const scene::FrameState& frame, size_t i,
-                                          const scene::Primitive& prim) {
-  const scene::Instance& inst = scene.instances[i];
-  std::vector<scene::SkinningMatrix> skinning;
-  if (inst.skin >= 0) {
-    const scene::Skin& skin = scene.skins[size_t(inst.skin)];
-    const bool posed = i < frame.joints.size() && !frame.joints[i].empty();
-    skinning = scene::skinning_matrices(skin, frame.transforms[i], posed ? frame.joints[i] : skin.joints);
-  }
-  const bool weighted = i < frame.morph_weights.size() && !frame.morph_weights[i].empty();
-  return scene::deform_primitive(prim, skinning, weighted ? frame.morph_weights[i] : inst.morph_weights).positions;
-}
-
 glm::mat4 object_to_render(const glm::mat4& m, glm::dvec3 origin) {
   glm::mat4 r = m;
   for (int i = 0; i < 3; ++i) r[3][i] = float(double(m[3][i]) - origin[i]);
@@ -67,15 +54,17 @@ EmitterTable build_emitter_table(const scene::Scene& scene, const scene::FrameSt
     const auto& mesh = scene.meshes[inst.lod_meshes[frame.lods[i]]];
     glm::mat4 m = object_to_render(frame.transforms[i], origin);
     bool mirrored = glm::determinant(glm::mat3(m)) < 0.0f;
+    // A deforming instance's emitters are where its deformed vertices are this frame (the same
+    // computation as the device's deformation pass: scene/deform.h).
+    const std::vector<scene::SkinningMatrix> skinning =
+        inst.deforms() ? scene::instance_skinning(scene, frame, i) : std::vector<scene::SkinningMatrix>{};
     for (size_t g = 0; g < mesh.primitives.size(); ++g) {
       const auto& prim = mesh.primitives[g];
       const auto& mat = scene.materials[prim.material];
       double material_lum = 0.2126 * mat.emission.r + 0.7152 * mat.emission.g + 0.0722 * mat.emission.b;
       if (!(material_lum > 0.0)) continue;
-      // A deforming instance's emitters are where its deformed vertices are this frame (the same
-      // computation as the device's deformation pass: scene/deform.h).
       std::vector<glm::vec3> deformed;
-      if (inst.deforms()) deformed = deformed_positions(scene, frame, i, prim);
+      if (inst.deforms()) deformed = scene::deform_primitive(prim, skinning, scene::morph_weights_at(scene, frame, i)).positions;
       const std::vector<glm::vec3>& positions = inst.deforms() ? deformed : prim.positions;
       uint32_t flags = mat.double_sided ? gpu::MATERIAL_DOUBLE_SIDED : 0u;
       float flag_bits;

@@ -34,9 +34,4 @@ EmitterTable build_emitter_table(const scene::Scene& scene, const scene::FrameSt
 // Object-to-render transform: world transform with the origin moved, subtracting in double precision.
 glm::mat4 object_to_render(const glm::mat4& object_to_world, glm::dvec3 render_origin);
 
-// Object-space positions of a primitive of deforming instance i in `frame` (its rest pose where the
-// frame state has no joints or weights for it).
-std::vector<glm::vec3> deformed_positions(const scene::Scene& scene, const scene::FrameState& frame, size_t i,
-                                          const scene::Primitive& prim);
-
 }  // namespace strata::render

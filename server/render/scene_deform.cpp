@@ -41,17 +41,6 @@ void vertices_to_blas_barrier(VkCommandBuffer cmd) {
 
 }  // namespace
 
-std::span<const glm::mat4> SceneDeformation::joints_of(const scene::FrameState& frame, size_t i) const {
-  if (i < frame.joints.size() && !frame.joints[i].empty()) return frame.joints[i];
-  const int32_t skin = scene_.instances[i].skin;
-  return skin >= 0 ? std::span<const glm::mat4>(scene_.skins[size_t(skin)].joints) : std::span<const glm::mat4>();
-}
-
-std::span<const float> SceneDeformation::weights_of(const scene::FrameState& frame, size_t i) const {
-  if (i < frame.morph_weights.size() && !frame.morph_weights[i].empty()) return frame.morph_weights[i];
-  return scene_.instances[i].morph_weights;
-}
-
 bool SceneDeformation::needed(const scene::Scene& scene) {
   return std::any_of(scene.instances.begin(), scene.instances.end(), [](const scene::Instance& i) { return i.deforms(); });
 }
@@ -68,7 +57,9 @@ SceneDeformation::SceneDeformation(const gpu::Context& ctx, const scene::Scene& 
                                    const gpu::Buffer& vertices)
     : scene_(scene), copy_of_(scene.instances.size(), -1), slots_(slots) {
   std::array<std::vector<gpu::GpuDeformJob>, 2> jobs;
-  std::array<std::vector<glm::uvec2>, 2> vertex_job;
+  // Per deformed vertex of a slot, its job and vertex: the same for every slot, whose jobs come in
+  // the same order.
+  std::vector<glm::uvec2> vertex_job;
   std::vector<gpu::GpuMorphDelta> deltas;
   std::vector<gpu::GpuSkinVertex> skin;
   size_t copy = 0;
@@ -127,7 +118,8 @@ SceneDeformation::SceneDeformation(const gpu::Context& ctx, const scene::Scene& 
       for (gpu::GpuDeformJob job : prim_jobs) {
         job.dst_vertex = dst;
         dst += job.vertex_count;
-        for (uint32_t v = 0; v < job.vertex_count; ++v) vertex_job[s].push_back({uint32_t(jobs[s].size()), v});
+        if (s == 0)
+          for (uint32_t v = 0; v < job.vertex_count; ++v) vertex_job.push_back({uint32_t(jobs[s].size()), v});
         jobs[s].push_back(job);
       }
       primitive_base_.push_back(layout.copy_primitive_base[copy]);
@@ -137,7 +129,7 @@ SceneDeformation::SceneDeformation(const gpu::Context& ctx, const scene::Scene& 
     }
     instances_.push_back(std::move(d));
   }
-  vertices_per_slot_ = uint32_t(vertex_job[0].size());
+  vertices_per_slot_ = uint32_t(vertex_job.size());
   const auto usage = gpu::k_storage_usage;
   for (uint32_t s = 0; s < 2; ++s) {
     const uint32_t from = std::min(s, slots - 1);
@@ -146,8 +138,7 @@ SceneDeformation::SceneDeformation(const gpu::Context& ctx, const scene::Scene& 
                                "skinning matrices");
     weights_[s] = gpu::Buffer(ctx, std::max<size_t>(1, weight_count_) * sizeof(float), usage, gpu::Memory::Host, "morph weights");
   }
-  // Both slots' vertices share one job table layout: slot 1's entries name slot 1's jobs.
-  vertex_job_ = gpu::make_buffer<glm::uvec2>(ctx, vertex_job[0], usage, gpu::Memory::Device, "deformed vertex jobs");
+  vertex_job_ = gpu::make_buffer<glm::uvec2>(ctx, vertex_job, usage, gpu::Memory::Device, "deformed vertex jobs");
   if (deltas.empty()) deltas.push_back({});
   if (skin.empty()) skin.push_back({});
   morph_deltas_ = gpu::make_buffer<gpu::GpuMorphDelta>(ctx, deltas, usage, gpu::Memory::Device, "morph deltas");
@@ -182,28 +173,26 @@ VkDeviceAddress SceneDeformation::blas_address(size_t instance, int slot) const 
 void SceneDeformation::record(VkCommandBuffer cmd, int slot, const scene::FrameState& frame) {
   std::vector<gpu::GpuSkinMatrix> matrices(std::max<size_t>(1, joint_count_));
   std::vector<float> weights(std::max<size_t>(1, weight_count_), 0.0f);
-  size_t d = 0;
+  std::vector<std::vector<scene::SkinningMatrix>> skinning(instances_.size());  // per deforming instance, for its bounds below
   for (size_t i = 0; i < scene_.instances.size(); ++i) {
     if (copy_of_[i] < 0) continue;
-    const scene::Instance& inst = scene_.instances[i];
-    const Instance& di = instances_[d++];
-    if (inst.skin >= 0) {
-      const auto s = scene::skinning_matrices(scene_.skins[size_t(inst.skin)], frame.transforms[i], joints_of(frame, i));
-      for (size_t j = 0; j < s.size(); ++j) matrices[di.joint_offset + j] = {s[j].position, glm::mat4(s[j].normal)};
-    }
-    const auto w = weights_of(frame, i);
-    std::copy_n(w.begin(), std::min(w.size(), inst.morph_weights.size()), weights.begin() + di.weight_offset);
+    const size_t d = size_t(copy_of_[i]) / slots_;
+    const Instance& di = instances_[d];
+    skinning[d] = scene::instance_skinning(scene_, frame, i);
+    for (size_t j = 0; j < skinning[d].size(); ++j)
+      matrices[di.joint_offset + j] = {skinning[d][j].position, glm::mat4(skinning[d][j].normal)};
+    const auto w = scene::morph_weights_at(scene_, frame, i);
+    std::copy_n(w.begin(), std::min(w.size(), scene_.instances[i].morph_weights.size()), weights.begin() + di.weight_offset);
   }
   const size_t s = size_t(slot) % slots_;
   matrices_[s].upload(matrices.data(), matrices.size() * sizeof(gpu::GpuSkinMatrix));
   weights_[s].upload(weights.data(), weights.size() * sizeof(float));
   pass_->dispatch_1d(cmd, int(s), vertices_per_slot_, &vertices_per_slot_);
   vertices_to_blas_barrier(cmd);
-  d = 0;
   for (size_t i = 0; i < scene_.instances.size(); ++i) {
     if (copy_of_[i] < 0) continue;
     const size_t c = size_t(copy_of_[i]) + s;
-    const double area = surface_area(object_bounds(i, frame));
+    const double area = surface_area(bounds(i, scene::morph_weights_at(scene_, frame, i), skinning[size_t(copy_of_[i]) / slots_]));
     const bool rebuild = !(area <= k_rebuild_growth * built_area_[c]);
     blas_[c].record_update(cmd, rebuild);
     if (rebuild) built_area_[c] = area;
@@ -211,13 +200,15 @@ void SceneDeformation::record(VkCommandBuffer cmd, int slot, const scene::FrameS
 }
 
 std::pair<glm::vec3, glm::vec3> SceneDeformation::object_bounds(size_t instance, const scene::FrameState& frame) const {
+  return bounds(instance, scene::morph_weights_at(scene_, frame, instance), scene::instance_skinning(scene_, frame, instance));
+}
+
+std::pair<glm::vec3, glm::vec3> SceneDeformation::bounds(size_t instance, std::span<const float> w,
+                                                         std::span<const scene::SkinningMatrix> s) const {
   const Instance& di = instances_[size_t(copy_of_[instance]) / slots_];
   glm::vec3 reach(0.0f);
-  const auto w = weights_of(frame, instance);
   for (size_t t = 0; t < di.target_reach.size() && t < w.size(); ++t) reach += std::abs(w[t]) * di.target_reach[t];
-  const scene::Instance& inst = scene_.instances[instance];
-  if (inst.skin < 0) return {di.joint_boxes[0].first - reach, di.joint_boxes[0].second + reach};
-  const auto s = scene::skinning_matrices(scene_.skins[size_t(inst.skin)], frame.transforms[instance], joints_of(frame, instance));
+  if (scene_.instances[instance].skin < 0) return {di.joint_boxes[0].first - reach, di.joint_boxes[0].second + reach};
   Box out = empty_box();
   for (size_t j = 0; j < di.joint_boxes.size() && j < s.size(); ++j) {
     const Box& b = di.joint_boxes[j];

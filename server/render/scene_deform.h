@@ -74,12 +74,10 @@ class SceneDeformation {
   uint64_t bytes() const;
   static constexpr double k_rebuild_growth = 1.5;
 
-  // Instance i's joints (joint to world) and morph weights in `frame`; its rest pose where the frame
-  // state has none.
-  std::span<const glm::mat4> joints_of(const scene::FrameState& frame, size_t i) const;
-  std::span<const float> weights_of(const scene::FrameState& frame, size_t i) const;
-
  private:
+  // object_bounds at the frame's morph weights `w` and skinning matrices `s` (scene/deform.h).
+  std::pair<glm::vec3, glm::vec3> bounds(size_t instance, std::span<const float> w, std::span<const scene::SkinningMatrix> s) const;
+
   struct Instance {
     std::vector<std::pair<glm::vec3, glm::vec3>> joint_boxes;  // per joint (skinned), or one rest box
     std::vector<glm::vec3> target_reach;                       // per target: the largest |delta| per axis

@@ -176,8 +176,8 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
       if (frame.transforms[i] != current_.transforms[i]) changes |= gpu::INSTANCE_CHANGED_TRANSFORM;
       if (frame.lods[i] != current_.lods[i]) changes |= gpu::INSTANCE_CHANGED_LOD;
       if (deformation_ && deformation_->deforms(i) &&
-          (!std::ranges::equal(deformation_->joints_of(frame, i), deformation_->joints_of(current_, i)) ||
-           !std::ranges::equal(deformation_->weights_of(frame, i), deformation_->weights_of(current_, i))))
+          (!std::ranges::equal(scene::joints_at(scene_, frame, i), scene::joints_at(scene_, current_, i)) ||
+           !std::ranges::equal(scene::morph_weights_at(scene_, frame, i), scene::morph_weights_at(scene_, current_, i))))
         changes |= gpu::INSTANCE_CHANGED_SHAPE;
       if (changes && instance_emits_[i]) changes |= gpu::INSTANCE_CHANGED_EMISSION;
     }

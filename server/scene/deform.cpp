@@ -16,6 +16,23 @@ std::vector<SkinningMatrix> skinning_matrices(const Skin& skin, const glm::mat4&
   return out;
 }
 
+std::span<const glm::mat4> joints_at(const Scene& scene, const FrameState& frame, size_t i) {
+  if (i < frame.joints.size() && !frame.joints[i].empty()) return frame.joints[i];
+  const int32_t skin = scene.instances[i].skin;
+  return skin >= 0 ? std::span<const glm::mat4>(scene.skins[size_t(skin)].joints) : std::span<const glm::mat4>();
+}
+
+std::span<const float> morph_weights_at(const Scene& scene, const FrameState& frame, size_t i) {
+  if (i < frame.morph_weights.size() && !frame.morph_weights[i].empty()) return frame.morph_weights[i];
+  return scene.instances[i].morph_weights;
+}
+
+std::vector<SkinningMatrix> instance_skinning(const Scene& scene, const FrameState& frame, size_t i) {
+  const int32_t skin = scene.instances[i].skin;
+  if (skin < 0) return {};
+  return skinning_matrices(scene.skins[size_t(skin)], frame.transforms[i], joints_at(scene, frame, i));
+}
+
 DeformedVertices deform_primitive(const Primitive& p, std::span<const SkinningMatrix> skinning,
                                   std::span<const float> morph_weights) {
   DeformedVertices out{p.positions, p.normals};

@@ -22,6 +22,13 @@ struct SkinningMatrix {
 std::vector<SkinningMatrix> skinning_matrices(const Skin& skin, const glm::mat4& instance_transform,
                                               std::span<const glm::mat4> joints);
 
+// Instance i's joints (joint to world) and morph weights in `frame`; its rest pose (its skin's
+// joints, its own weights) where the frame state has none for it.
+std::span<const glm::mat4> joints_at(const Scene& scene, const FrameState& frame, size_t i);
+std::span<const float> morph_weights_at(const Scene& scene, const FrameState& frame, size_t i);
+// Instance i's skinning matrices in `frame` (empty when it is not skinned).
+std::vector<SkinningMatrix> instance_skinning(const Scene& scene, const FrameState& frame, size_t i);
+
 struct DeformedVertices {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // unit length (the rest normal where the blend degenerates)

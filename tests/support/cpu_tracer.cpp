@@ -182,16 +182,14 @@ CpuScene build_cpu_scene(const scene::Scene& scene, const scene::FrameState& fra
     // A mirroring transform reverses the world-space winding; the front face stays the object's.
     const double orientation = glm::determinant(glm::dmat3(m)) < 0.0 ? -1.0 : 1.0;
     // A skinned or morphing instance's vertices as the frame poses them (scene/deform.h).
-    std::vector<scene::SkinningMatrix> skinning;
-    if (instance.skin >= 0 && i < frame.joints.size())
-      skinning = scene::skinning_matrices(scene.skins.at(size_t(instance.skin)), frame.transforms[i], frame.joints[i]);
+    const std::vector<scene::SkinningMatrix> skinning =
+        instance.deforms() ? scene::instance_skinning(scene, frame, i) : std::vector<scene::SkinningMatrix>{};
     for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
       const scene::Primitive& rest = mesh.primitives[pi];
       scene::Primitive posed;
       if (instance.deforms()) {
         posed = rest;
-        const std::vector<float>& weights = i < frame.morph_weights.size() ? frame.morph_weights[i] : instance.morph_weights;
-        scene::DeformedVertices d = scene::deform_primitive(rest, skinning, weights);
+        scene::DeformedVertices d = scene::deform_primitive(rest, skinning, scene::morph_weights_at(scene, frame, i));
         posed.positions = std::move(d.positions);
         posed.normals = std::move(d.normals);
       }
