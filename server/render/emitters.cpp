@@ -100,6 +100,7 @@ EmitterTable build_emitter_table(const scene::Scene& scene, const scene::FrameSt
   for (size_t i = 0; i < t.emitters.size(); ++i) t.emitters[i].p1_pmf.w = float(power[i] / total);
   for (size_t l = 0; l < t.lights.size(); ++l) t.lights[l].intensity_pmf.w = float(power[t.emitters.size() + l] / total);
   t.alias = build_alias_table(power);
+  t.power = std::move(power);
   return t;
 }
 

@@ -21,6 +21,7 @@ struct EmitterTable {
   std::vector<gpu::GpuEmitter> emitters;
   std::vector<gpu::GpuPunctualLight> lights;
   std::vector<gpu::GpuAliasEntry> alias;
+  std::vector<double> power;  // per entry (emitters, then lights): its weight in the alias table
   double total_power = 0.0;  // sum of luminance(emission) * area * sides, plus the lights' punctual_power
 };
 

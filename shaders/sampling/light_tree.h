@@ -1,0 +1,107 @@
+// The light tree's choice of a light at a shading point and that choice's probability (one
+// definition for the passes and the host's tests; include/light_tree_data.h has the layout).
+// Before including, define how a tree is read:
+//   LIGHT_TREE_T                 the type of a tree handle (a buffer address, a host view)
+//   LIGHT_TREE_NODE(tree, i)     its GpuLightNode i
+//   LIGHT_TREE_TRAIL(tree, e)    the trail (uvec4) of table entry e
+//   LIGHT_TREE_NODE_COUNT(tree)  its node count
+#ifndef STRATA_LIGHT_TREE_H
+#define STRATA_LIGHT_TREE_H
+#include "include/lang.h"
+#include "include/light_tree_data.h"
+#include "sampling/warp.h"
+
+STRATA_NAMESPACE_BEGIN
+
+// How far past its bound an angle still counts as inside (radians), so that float rounding of the
+// bounds never culls a light that reaches x; and the least cosine factor of a node not culled.
+CONST_DEF float LIGHT_TREE_ANGLE_SLACK = 1e-3f;
+CONST_DEF float LIGHT_TREE_MIN_COS = 1e-3f;
+
+// The importance of a node at shading point x (Conty Estevez & Kulla 2018, Eq. 3, without the
+// receiver's own cosine): its power over the squared distance to its bounds' centre (no less than
+// the bounds' squared radius, so x inside or beside them sees them all as near), times the cosine
+// of theta' = max(0, theta_w - theta_o - theta_b), the least angle between an emitter normal of the
+// cone and the direction to x that the bounds allow (theta_w: axis to x; theta_b: half the angle
+// the bounds subtend), and 0 where theta' is past theta_e: no light below emits towards x. Positive
+// wherever some light below can reach x, which is what keeps the estimator unbiased.
+INLINE float light_node_importance(GpuLightNode n, vec3 x) {
+  float power = n.lo_power.w;
+  if (!(power > 0.0f)) return 0.0f;
+  vec3 lo = vec3(n.lo_power.x, n.lo_power.y, n.lo_power.z);
+  vec3 hi = vec3(n.hi_spread.x, n.hi_spread.y, n.hi_spread.z);
+  vec3 half_extent = 0.5f * (hi - lo);
+  vec3 d = x - (lo + half_extent);
+  float r2 = dot(half_extent, half_extent);
+  float d2 = dot(d, d);
+  float dist2 = max(max(d2, r2), 1e-20f);
+  if (d2 <= r2) return power / dist2;  // x within the bounding sphere: every orientation can face it
+  vec3 axis = vec3(n.axis_emit.x, n.axis_emit.y, n.axis_emit.z);
+  float cos_w = dot(axis, d) / sqrt(d2);
+  if ((n.links.y & LIGHT_NODE_TWO_SIDED) != 0u) cos_w = abs(cos_w);
+  float theta_w = acos(clamp(cos_w, -1.0f, 1.0f));
+  float theta_b = asin(clamp(sqrt(r2 / d2), 0.0f, 1.0f));
+  float theta = max(0.0f, theta_w - n.hi_spread.w - theta_b);
+  if (theta >= n.axis_emit.w + LIGHT_TREE_ANGLE_SLACK) return 0.0f;
+  return power * max(cos(theta), LIGHT_TREE_MIN_COS) / dist2;
+}
+
+// The probabilities of interior node `node`'s first and second child at x: each one's importance
+// over both children's (0 where neither reaches x).
+INLINE vec2 light_child_probabilities(LIGHT_TREE_T tree, uint node, vec3 x) {
+  GpuLightNode n = LIGHT_TREE_NODE(tree, node);
+  float i0 = light_node_importance(LIGHT_TREE_NODE(tree, node + 1u), x);
+  float i1 = light_node_importance(LIGHT_TREE_NODE(tree, n.links.x), x);
+  float sum = i0 + i1;
+  if (!(sum > 0.0f) || isinf(sum)) return vec2(0.0f);
+  return vec2(i0 / sum, i1 / sum);
+}
+
+// Descends the tree from the root at x with u in [0, 1): at each node the first child where u falls
+// below its probability (u rescaled to the chosen part), else the second. The table entry of the
+// leaf reached, and the product of the choices' probabilities; false where no light reaches x.
+INLINE bool light_tree_choose(LIGHT_TREE_T tree, vec3 x, float u, OUT(uint) entry, OUT(float) pmf) {
+  entry = LIGHT_TREE_NONE;
+  pmf = 1.0f;
+  if (LIGHT_TREE_NODE_COUNT(tree) == 0u) return false;
+  uint node = 0u;
+  for (uint depth = 0u; depth <= LIGHT_TREE_MAX_DEPTH; ++depth) {
+    GpuLightNode n = LIGHT_TREE_NODE(tree, node);
+    if ((n.links.y & LIGHT_NODE_LEAF) != 0u) {
+      entry = n.links.x;
+      return pmf > 0.0f;
+    }
+    vec2 p = light_child_probabilities(tree, node, x);
+    if (u < p.x) {
+      pmf *= p.x;
+      u = min(u / p.x, 0.99999994f);
+      node = node + 1u;
+    } else {
+      if (!(p.y > 0.0f)) return false;
+      pmf *= p.y;
+      u = min((u - p.x) / p.y, 0.99999994f);
+      node = n.links.x;
+    }
+  }
+  return false;
+}
+
+// The probability with which light_tree_choose reaches table entry e from x: the same products along
+// its trail, in the same order (0 for an entry the tree does not hold).
+INLINE float light_tree_pmf(LIGHT_TREE_T tree, vec3 x, uint e) {
+  uvec4 trail = LIGHT_TREE_TRAIL(tree, e);
+  if (trail.z == LIGHT_TREE_NONE) return 0.0f;
+  float pmf = 1.0f;
+  uint node = 0u;
+  for (uint depth = 0u; depth < trail.z; ++depth) {
+    bool second = (((depth < 32u ? trail.x >> depth : trail.y >> (depth - 32u)) & 1u) != 0u);
+    vec2 p = light_child_probabilities(tree, node, x);
+    pmf *= second ? p.y : p.x;
+    if (!(pmf > 0.0f)) return 0.0f;
+    node = second ? LIGHT_TREE_NODE(tree, node).links.x : node + 1u;
+  }
+  return pmf;
+}
+
+STRATA_NAMESPACE_END
+#endif

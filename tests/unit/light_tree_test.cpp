@@ -1,0 +1,182 @@
+// The light tree (render/light_tree.h, sampling/light_tree.h): the probabilities it gives a shading
+// point sum to one over the lights and are those its choice takes, every light that can reach the
+// point has a positive probability (else next-event estimation would miss its light: bias), stratified
+// choices land on each light as often as its probability says, and near lights are chosen more often
+// than power alone would.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "render/light_tree.h"
+#include "scene/builtin/random.h"
+#include "scene/scene_io.h"
+
+namespace strata::test {
+namespace {
+
+// A many-light table: emissive triangles scattered in a 20 m box (random orientation, a third
+// double-sided, instance i / 40, geometry (i / 10) % 4), point and spot lights, two directional.
+struct ManyLights {
+  render::EmitterTable table;
+  std::vector<scene::Light> lights;
+};
+
+ManyLights many_lights(uint32_t emitters, uint32_t punctual) {
+  ManyLights m;
+  scene::builtin::Pcg32 rng(0x11947u);
+  auto point = [&](float r) { return glm::vec3(rng.uniform(-r, r), rng.uniform(-r, r), rng.uniform(-r, r)); };
+  for (uint32_t i = 0; i < emitters; ++i) {
+    const glm::vec3 c = point(10.0f);
+    const glm::vec3 p[3] = {c + point(0.3f), c + point(0.3f), c + point(0.3f)};
+    const float area = 0.5f * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
+    uint32_t flags = i % 3 == 0 ? gpu::MATERIAL_DOUBLE_SIDED : 0u;
+    float flag_bits;
+    std::memcpy(&flag_bits, &flags, sizeof flags);
+    m.table.emitters.push_back({glm::vec4(p[0], area), glm::vec4(p[1], 0.0f), glm::vec4(p[2], flag_bits), glm::vec4(1.0f),
+                                glm::uvec4(i / 40, (i / 10) % 4, 3 * (i % 10), 0u)});
+    m.table.power.push_back(double(area) * rng.uniform(0.1f, 10.0f));
+  }
+  for (uint32_t l = 0; l < punctual + 2; ++l) {
+    scene::Light light;
+    light.type = l >= punctual ? scene::LightType::kDirectional : (l % 2 ? scene::LightType::kSpot : scene::LightType::kPoint);
+    light.outer_cone = 0.6f;
+    m.lights.push_back(light);
+    gpu::GpuPunctualLight r{};
+    const glm::vec3 dir = glm::normalize(point(1.0f) + glm::vec3(0.0f, -0.5f, 0.0f));
+    r.position_range = glm::vec4(point(10.0f), 0.0f);
+    r.direction_type = glm::vec4(dir, float(light.type == scene::LightType::kDirectional ? gpu::PUNCTUAL_DIRECTIONAL
+                                            : light.type == scene::LightType::kSpot          ? gpu::PUNCTUAL_SPOT
+                                                                                             : gpu::PUNCTUAL_POINT));
+    m.table.lights.push_back(r);
+    m.table.power.push_back(rng.uniform(0.5f, 5.0f));
+  }
+  return m;
+}
+
+uint32_t entries(const render::EmitterTable& t) { return uint32_t(t.emitters.size() + t.lights.size()); }
+
+TEST(LightTree, ProbabilitiesSumToOneAndAreThoseOfTheChoice) {
+  const ManyLights m = many_lights(600, 64);
+  const render::LightTree tree = render::build_light_tree(m.table, m.lights, 16);
+  ASSERT_EQ(tree.directional.size(), 2u);
+  scene::builtin::Pcg32 rng(7u);
+  for (int k = 0; k < 40; ++k) {
+    const glm::vec3 x(rng.uniform(-12.0f, 12.0f), rng.uniform(-12.0f, 12.0f), rng.uniform(-12.0f, 12.0f));
+    // At most one: a node may reach x where none of its children does (its bounds and cone are
+    // looser than theirs), and a choice that descends there finds no light (a wasted sample, not bias).
+    double sum = 0.0;
+    for (uint32_t e = 0; e < entries(m.table); ++e) sum += render::light_tree_pmf(tree, x, e);
+    EXPECT_LE(sum, 1.0 + 1e-4) << "x " << x.x << " " << x.y << " " << x.z;
+    EXPECT_GT(sum, 0.9) << "x " << x.x << " " << x.y << " " << x.z;
+    for (int j = 0; j < 64; ++j) {
+      uint32_t e;
+      float pmf;
+      if (!render::light_tree_choose(tree, x, rng.uniform(0.0f, 1.0f), e, pmf)) continue;
+      EXPECT_EQ(pmf, render::light_tree_pmf(tree, x, e));  // the same products, bit for bit
+    }
+  }
+}
+
+TEST(LightTree, EveryLightThatReachesThePointHasAPositiveProbability) {
+  const ManyLights m = many_lights(600, 64);
+  const render::LightTree tree = render::build_light_tree(m.table, m.lights, 16);
+  scene::builtin::Pcg32 rng(11u);
+  int reaching = 0, culled = 0;  // emitters facing x; of the others, those the cones rule out
+  for (int k = 0; k < 40; ++k) {
+    const glm::vec3 x(rng.uniform(-12.0f, 12.0f), rng.uniform(-12.0f, 12.0f), rng.uniform(-12.0f, 12.0f));
+    for (uint32_t e = 0; e < m.table.emitters.size(); ++e) {
+      const auto& t = m.table.emitters[e];
+      const glm::vec3 p0(t.p0_area), p1(t.p1_pmf), p2(t.p2_flags);
+      const glm::vec3 n = glm::cross(p1 - p0, p2 - p0);
+      uint32_t flags;
+      std::memcpy(&flags, &t.p2_flags.w, sizeof flags);
+      const float facing = glm::dot(n, x - p0);  // the plane's side x is on: the whole triangle faces it or not
+      if (facing > 0.0f || (flags & gpu::MATERIAL_DOUBLE_SIDED) != 0u) {
+        ++reaching;
+        EXPECT_GT(render::light_tree_pmf(tree, x, e), 0.0f) << "emitter " << e;
+      } else if (render::light_tree_pmf(tree, x, e) == 0.0f) {
+        ++culled;
+      }
+    }
+    for (uint32_t l = 0; l + 2 < m.lights.size(); ++l) {
+      const auto& r = m.table.lights[l];
+      const glm::vec3 to_x = glm::normalize(x - glm::vec3(r.position_range));
+      const bool lit = m.lights[l].type == scene::LightType::kPoint ||
+                       glm::dot(to_x, glm::vec3(r.direction_type)) > std::cos(m.lights[l].outer_cone);
+      if (lit) {
+        EXPECT_GT(render::light_tree_pmf(tree, x, uint32_t(m.table.emitters.size()) + l), 0.0f) << "light " << l;
+      }
+    }
+  }
+  EXPECT_GT(reaching, 10000);
+  EXPECT_GT(culled, 2000);  // the orientation bounds do rule lights out
+}
+
+TEST(LightTree, StratifiedChoicesLandAsOftenAsTheProbabilitySays) {
+  const ManyLights m = many_lights(300, 32);
+  const render::LightTree tree = render::build_light_tree(m.table, m.lights, 16);
+  const glm::vec3 x(1.0f, 2.0f, -3.0f);
+  constexpr uint32_t n = 1u << 18;
+  std::vector<uint32_t> count(entries(m.table), 0u);
+  uint32_t missed = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    uint32_t e;
+    float pmf;
+    if (render::light_tree_choose(tree, x, (float(i) + 0.5f) / float(n), e, pmf)) ++count.at(e);
+    else ++missed;
+  }
+  double sum = 0.0;
+  // Each leaf owns an interval of u as long as its probability (to float rounding of the rescaled u
+  // over about 20 levels): stratified counts are n pmf to within a few strata.
+  for (uint32_t e = 0; e < entries(m.table); ++e) {
+    sum += render::light_tree_pmf(tree, x, e);
+    EXPECT_NEAR(double(count[e]), double(n) * render::light_tree_pmf(tree, x, e), 4.0) << "entry " << e;
+  }
+  EXPECT_NEAR(double(missed), double(n) * (1.0 - sum), 8.0);
+}
+
+TEST(LightTree, ChoosesNearLightsMoreOftenThanPowerDoes) {
+  // 64 equal point lights 2 m apart along a 126 m street: at 1 m from the first, power selection
+  // gives it 1/64; its share of the irradiance there is above 0.6.
+  render::EmitterTable table;
+  std::vector<scene::Light> lights(64);
+  for (uint32_t l = 0; l < 64; ++l) {
+    gpu::GpuPunctualLight r{};
+    r.position_range = glm::vec4(2.0f * float(l), 3.0f, 0.0f, 0.0f);
+    r.direction_type = glm::vec4(0.0f, -1.0f, 0.0f, float(gpu::PUNCTUAL_POINT));
+    table.lights.push_back(r);
+    table.power.push_back(1.0);
+  }
+  const render::LightTree tree = render::build_light_tree(table, lights, 0);
+  EXPECT_GT(render::light_tree_pmf(tree, glm::vec3(0.0f, 2.0f, 0.0f), 0), 0.25f);
+  EXPECT_LT(render::light_tree_pmf(tree, glm::vec3(0.0f, 2.0f, 0.0f), 63), 1.0f / 640.0f);
+}
+
+TEST(LightTree, FindsEachEmittersEntryAndKeepsItsBounds) {
+  const ManyLights m = many_lights(600, 64);
+  const render::LightTree tree = render::build_light_tree(m.table, m.lights, 16);
+  for (uint32_t e = 0; e < m.table.emitters.size(); ++e) {
+    const glm::uvec4 s = m.table.emitters[e].surface;
+    EXPECT_EQ(tree.entry_of(s.x, s.y, s.z), e);
+    EXPECT_EQ(tree.entry_of(s.x, s.y, s.z + 1), gpu::LIGHT_TREE_NONE);  // triangles are 3 apart
+  }
+  EXPECT_EQ(tree.entry_of(15, 0, 0), gpu::LIGHT_TREE_NONE);  // an instance without emitters
+  EXPECT_EQ(tree.entry_of(99, 0, 0), gpu::LIGHT_TREE_NONE);  // no such instance
+  for (uint32_t i = 0; i < tree.nodes.size(); ++i) {
+    const gpu::GpuLightNode& n = tree.nodes[i];
+    if (n.links.y & gpu::LIGHT_NODE_LEAF) continue;
+    const gpu::GpuLightNode& a = tree.nodes[i + 1];
+    const gpu::GpuLightNode& b = tree.nodes[n.links.x];
+    EXPECT_NEAR(n.lo_power.w, a.lo_power.w + b.lo_power.w, 1e-4 * n.lo_power.w);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LE(n.lo_power[k], std::min(a.lo_power[k], b.lo_power[k]));
+      EXPECT_GE(n.hi_spread[k], std::max(a.hi_spread[k], b.hi_spread[k]));
+    }
+  }
+  for (const glm::uvec4& t : tree.trails) EXPECT_TRUE(t.z == gpu::LIGHT_TREE_NONE || t.z <= gpu::LIGHT_TREE_MAX_DEPTH);
+}
+
+}  // namespace
+}  // namespace strata::test
