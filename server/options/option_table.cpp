@@ -28,6 +28,7 @@ void set_member(RestirOptions& o, double v) {
 #define STRATA_MEMBER(m) .get = &get_member<&RestirOptions::m>, .set = &set_member<&RestirOptions::m>
 
 using render::LayerMode;
+using render::LightSampler;
 using render::LodMapping;
 using render::LodVertices;
 using render::Mis;
@@ -56,6 +57,11 @@ constexpr Choice k_lod_mapping[] = {
     {"off", 2, u(LodMapping::off), "a LoD switch refuses the temporal shifts of the switched instance's points"},
     {"uv", 3, u(LodMapping::uv), "the vertex mapping tau through the shared UV parametrisation (the LOD paper)"},
 };
+constexpr Choice k_light_sampler[] = {
+    {"power", 1, u(LightSampler::power), "an alias table by power: every light's probability the same everywhere"},
+    {"tree", 2, u(LightSampler::tree),
+     "the light tree: near and facing lights more often, by importance at the shading point (Conty Estevez & Kulla 2018)"},
+};
 constexpr Choice k_lod_vertices[] = {
     {"both", 1, u(LodVertices::both), "the primary hit and the reconnection vertex"},
     {"primary", 2, u(LodVertices::primary), "the primary hit only (splat reprojection, gather backprojection)"},
@@ -75,6 +81,9 @@ const OptionSpec k_table[] = {
     {.name = "max_depth", .scope = Scope::every, .lo = 1, .limit = "max_depth", .default_from = DefaultFrom::service_limit,
      .fixed_default = 16, .flag = "--max-depth", .help = "path segments after the camera (restir-di: at most 2)",
      .sets = "GpuFrameConstants.max_depth, GpuRestirConstants.max_segments"},
+    {.name = "light_sampler", .kind = Kind::choice, .scope = Scope::every, .choices = k_light_sampler, .flag = "--light-sampler",
+     .help = "how next-event estimation (pt's, and the restir-* methods' light candidates) chooses a light",
+     .sets = "SPEC_LIGHT_TREE, the scene's light tree buffers (GpuScene)", STRATA_MEMBER(light_sampler)},
     {.name = "exposure", .kind = Kind::real, .scope = Scope::every, .on_change = OnChange::in_place, .lo = -64, .hi = 64,
      .unit = "stops", .fixed_default = 0, .flag = "--exposure", .help = "exposure of PNG previews, before the ACES curve",
      .sets = "nothing on the device: the PNG encoder"},

@@ -81,6 +81,8 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
   // With history the other slot holds the previous frame's records; without, this frame's stand in.
   c.prev_lights = gpu::address_words(scene.lights_address(scene.keeps_history() ? 1 - scene.parity() : scene.parity()));
   c.environment_map = gpu::address_words(scene.environment_map_address());
+  c.light_tree = gpu::address_words(scene.light_tree_address(scene.parity()));
+  c.prev_light_tree = gpu::address_words(scene.light_tree_address(scene.keeps_history() ? 1 - scene.parity() : scene.parity()));
 
   // The previous frame (docs/ARCHITECTURE.md, State, session state): the one the scene's previous slot
   // holds, at the same resolution (a session's image size is fixed). After the first update that
@@ -97,6 +99,7 @@ gpu::GpuFrameConstants make_frame_constants(const scene::FrameState& frame, cons
     if (scene.moved_since_previous()) c.history_flags |= gpu::HISTORY_SCENE_MOVED;
     if (scene.lights_reselected() || c.env_select_prob != c.prev_env_select_prob) c.history_flags |= gpu::HISTORY_LIGHTS_RESELECTED;
     if (scene.lights_moved()) c.history_flags |= gpu::HISTORY_LIGHTS_MOVED;
+    if (scene.lights_changed() || c.env_select_prob != c.prev_env_select_prob) c.history_flags |= gpu::HISTORY_LIGHTS_CHANGED;
     if (frame.camera == prev.camera && frame.camera_open == prev.camera_open) c.history_flags |= gpu::HISTORY_CAMERA_STILL;
   }
   return c;

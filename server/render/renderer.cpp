@@ -44,7 +44,8 @@ Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSet
     : ctx_(ctx), settings_(std::move(settings)) {
   settings_.validate();
   // Temporal reuse needs the previous frame's TLAS and instances on the device; `pt` keeps none.
-  scene_ = std::make_unique<GpuScene>(ctx, scene, /*keep_history=*/method_spec(settings_.method).reuse);
+  scene_ = std::make_unique<GpuScene>(ctx, scene, /*keep_history=*/method_spec(settings_.method).reuse,
+                                      /*light_tree=*/settings_.restir.light_sampler == LightSampler::tree);
   const RestirOptions& ro = settings_.restir;
   scene_->set_lod_mapping({.uv = ro.lod_mapping != LodMapping::off,
                            .matching = ro.lod_matching,

@@ -7,6 +7,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "include/bindings.h"
+#include "render/light_tree.h"
 #include "render/punctual_lights.h"
 
 namespace strata::render {
@@ -17,7 +18,8 @@ constexpr VkBufferUsageFlags k_geometry_usage =
 
 }  // namespace
 
-GpuScene::GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep_history) : ctx_(ctx), scene_(scene) {
+GpuScene::GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep_history, bool light_tree)
+    : ctx_(ctx), scene_(scene), light_tree_(light_tree) {
   scene.validate();
   const uint32_t slot_count = keep_history ? 2 : 1;
   const std::vector<uint32_t> copies =
@@ -70,6 +72,22 @@ GpuScene::GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep
   alias_ = gpu::Buffer(ctx, std::max<size_t>(16, sizeof(gpu::GpuAliasEntry) * (capacity + scene.lights.size())),
                        gpu::k_storage_usage, gpu::Memory::Host,
                        "emitter alias table");
+  if (light_tree_) {
+    // The largest tree any LoD choice gives (LightTree::bytes): header, at most 2n - 1 nodes and n
+    // trails over n entries, the directional lights, per instance a record, per geometry of an
+    // emitting instance a record, per emitter its triangle; each array padded to 16 bytes.
+    const size_t entries = capacity + scene.lights.size();
+    size_t geometries = 0;
+    for (const auto& inst : scene.instances) {
+      size_t most = 0;
+      for (uint32_t mesh : inst.lod_meshes) most = std::max(most, scene.meshes[mesh].primitives.size());
+      geometries += most;
+    }
+    const size_t bytes = sizeof(gpu::GpuLightTreeHeader) + 2 * entries * sizeof(gpu::GpuLightNode) + entries * 16 +
+                         scene.lights.size() * 8 + scene.instances.size() * 8 + geometries * 8 + capacity * 4 + 7 * 16;
+    for (auto& slot : slots_)
+      slot.light_tree = gpu::Buffer(ctx, bytes, gpu::k_storage_usage, gpu::Memory::Host, "light tree");
+  }
 }
 
 void GpuScene::upload_geometry(uint32_t slot_count, const std::vector<uint32_t>& copies) {
@@ -244,6 +262,7 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
   }
   lights_reselected_ = frames_ > 0 && !selection.same_as(light_selection_);
   light_selection_ = std::move(selection);
+  if (light_tree_) record_light_tree(table);
   ++frames_;
   if (emitter_count_ > emitter_capacity_) throw gpu::GpuError("emitter table overflow");
   emitters_.upload(table.emitters.data(), table.emitters.size() * sizeof(gpu::GpuEmitter));
@@ -288,6 +307,26 @@ void GpuScene::upload_swept_boxes(const scene::FrameState& frame, glm::dvec3 ori
   }
   boxes.count = n;
   swept_.upload(&boxes, sizeof boxes);
+}
+
+// The frame's light tree to the slot record_update writes (and, on the first frame with history,
+// to the other slot too, as its punctual lights). Which lights the table lists decides whether the
+// same random numbers still choose the same light in both frames' trees (lights_reselected); any
+// light that moved, turned or changed level makes its probabilities differ (lights_changed).
+void GpuScene::record_light_tree(const EmitterTable& table) {
+  const LightTree tree = build_light_tree(table, scene_.lights, uint32_t(scene_.instances.size()));
+  const std::vector<std::byte> bytes = tree.bytes();
+  if (bytes.size() > slots_[size_t(parity_)].light_tree.size()) throw gpu::GpuError("light tree overflow");
+  slots_[size_t(parity_)].light_tree.upload(bytes.data(), bytes.size());
+  if (keeps_history() && frames_ == 0) slots_[size_t(1 - parity_)].light_tree.upload(bytes.data(), bytes.size());
+  std::vector<uint32_t> entries;
+  for (const auto& e : table.emitters) entries.insert(entries.end(), {e.surface.x, e.surface.y, e.surface.z});
+  const bool relisted = frames_ > 0 && entries != light_entries_;
+  light_entries_ = std::move(entries);
+  bool emitter_changed = false;
+  for (size_t i = 0; i < changes_.size(); ++i) emitter_changed = emitter_changed || (instance_emits_[i] && changes_[i] != 0);
+  lights_reselected_ = relisted;
+  lights_changed_ = frames_ > 0 && (relisted || lights_moved_ || emitter_changed);
 }
 
 bool GpuScene::LightSelection::same_as(const LightSelection& o) const {
@@ -383,10 +422,12 @@ SceneMemory GpuScene::memory() const {
   for (const auto& b : blas_) m.acceleration += b.bytes();
   const Slot& first = slots_[0];
   m.acceleration += first.tlas->bytes() + first.tlas->scratch_bytes();
-  m.per_frame = first.instances.size() + emitters_.size() + alias_.size() + (has_punctual() ? first.lights.size() : 0);
+  m.per_frame = first.instances.size() + emitters_.size() + alias_.size() + (has_punctual() ? first.lights.size() : 0) +
+                (light_tree_ ? first.light_tree.size() : 0);
   for (size_t i = 1; i < slots_.size(); ++i)
     m.history += slots_[i].tlas->bytes() + slots_[i].tlas->scratch_bytes() + slots_[i].instances.size() +
-                 (has_punctual() ? slots_[i].lights.size() : 0);
+                 (has_punctual() ? slots_[i].lights.size() : 0) +
+                 (light_tree_ ? slots_[i].light_tree.size() : 0);
   if (keeps_history()) m.history += swept_.size() + lod_off_table_.size();
   if (lod_uv_) m.lod_uv = lod_uv_->bytes();
   if (textures_) m.textures = textures_->bytes();

@@ -29,7 +29,7 @@ namespace strata::render {
 struct SceneMemory {
   VkDeviceSize geometry = 0;       // vertices, indices, primitive and material records
   VkDeviceSize acceleration = 0;   // BLAS, TLAS, scratch
-  VkDeviceSize per_frame = 0;      // instances, emitters, alias table, punctual lights
+  VkDeviceSize per_frame = 0;      // instances, emitters, alias table, punctual lights, light tree
   VkDeviceSize history = 0;        // the previous frame's slot: second TLAS, its scratch, instances
   VkDeviceSize lod_uv = 0;         // LoD-aware reuse: UV BLASes, UV TLAS, LoD table (scenes with LoD groups, with history)
   VkDeviceSize textures = 0;       // texels, texture and level tables, material texture records, vertex extras (textured scenes)
@@ -40,7 +40,9 @@ struct SceneMemory {
 class GpuScene {
  public:
   // Without `keep_history` there is one slot and nothing of the previous frame is kept on the device.
-  GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep_history = false);
+  // With `light_tree`, lights are chosen by the frame's light tree (render/light_tree.h), else by
+  // power (the alias table).
+  GpuScene(const gpu::Context& ctx, const scene::Scene& scene, bool keep_history = false, bool light_tree = false);
 
   // Uploads instance records and emitter tables for `frame` and records the TLAS build or refit.
   // With history, the frame goes to the slot the frame before last used (parity() flips), and the
@@ -68,7 +70,15 @@ class GpuScene {
   void add_spec(std::vector<gpu::SpecConstant>& spec) const {
     if (alpha_tested()) spec.push_back({SPEC_ALPHA_TEST, VK_TRUE});
     if (has_environment_map()) spec.push_back({SPEC_ENV_MAP, VK_TRUE});
+    if (light_tree_) spec.push_back({SPEC_LIGHT_TREE, VK_TRUE});
   }
+  // Lights are chosen by the light tree: every pass compiles it in (SPEC_LIGHT_TREE) and reads the
+  // tree of either frame by the device addresses in the frame constants (light_tree_address).
+  bool light_tree() const { return light_tree_; }
+  VkDeviceAddress light_tree_address(int slot) const { return light_tree_ ? slots_.at(size_t(slot)).light_tree.address() : 0; }
+  // With the tree: some light of the last recorded frame differs from the frame before's (moved,
+  // turned, changed power or level), so a light's probability at a point may differ between them.
+  bool lights_changed() const { return lights_changed_; }
   // The scene's environment is a map (render/scene_environment.h): every pass compiles it in
   // (SPEC_ENV_MAP) and reads it by the device address in the frame constants.
   bool has_environment_map() const { return environment_ != nullptr; }
@@ -136,7 +146,9 @@ class GpuScene {
   uint32_t prev_emitter_count() const { return prev_emitter_count_; }
   double prev_total_emitter_power() const { return prev_total_power_; }
   // The emitter table of the last recorded frame chooses other lights from the same random numbers
-  // than the frame before's (an emitter's power, LoD level or the set of emitters changed).
+  // than the frame before's (an emitter's power, LoD level or the set of emitters changed). With
+  // the light tree, whose choice each frame makes from its own tree: the table lists other lights
+  // (another set of emitters, or in another order).
   bool lights_reselected() const { return lights_reselected_; }
   bool has_emitters() const { return has_emitters_; }
   // Skinned or morphing instances (render/scene_deform.h); null for a scene without.
@@ -150,6 +162,7 @@ class GpuScene {
     std::unique_ptr<gpu::Tlas> tlas;
     gpu::Buffer instances;
     gpu::Buffer lights;               // the frame's GpuPunctualLight records (scenes with punctual lights)
+    gpu::Buffer light_tree;           // the frame's light tree (light_sampler tree)
     std::vector<uint32_t> last_lods;  // of this TLAS's last build: a refit needs the same BLASes
     glm::dvec3 origin{0.0};
   };
@@ -157,6 +170,7 @@ class GpuScene {
   // World-space bounds of instance i in `frame`; the swept boxes of the changed ones, uploaded.
   std::pair<glm::dvec3, glm::dvec3> world_bounds(const scene::FrameState& frame, size_t i) const;
   void upload_swept_boxes(const scene::FrameState& frame, glm::dvec3 origin);
+  void record_light_tree(const EmitterTable& table);
   void write_slot(VkCommandBuffer cmd, Slot& slot, const scene::FrameState& frame, glm::dvec3 origin,
                   std::span<const gpu::GpuInstance> records, std::span<const VkAccelerationStructureInstanceKHR> tlas_instances);
   const gpu::Context& ctx_;
@@ -197,6 +211,9 @@ class GpuScene {
   };
   LightSelection light_selection_;  // of the last recorded frame's emitter table
   bool lights_reselected_ = false;
+  bool light_tree_ = false;
+  bool lights_changed_ = false;
+  std::vector<uint32_t> light_entries_;  // of the last recorded frame's table: per entry its instance, geometry, triangle
 };
 
 }  // namespace strata::render

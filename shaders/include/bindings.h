@@ -79,5 +79,6 @@
 #define SPEC_ALPHA_TEST 11      // textured variants, scenes with alpha-tested materials: rays are not forced opaque
 #define SPEC_PUNCTUAL 12        // passes that sample lights, scenes with punctual lights: the light table's punctual entries (include/scene_lights.glsl)
 #define SPEC_ENV_MAP 13         // scenes with an environment map: escaped rays and environment NEE read it (include/scene_lights.glsl)
+#define SPEC_LIGHT_TREE 14      // light_sampler tree: lights are chosen by the frame's light tree (include/scene_lights.glsl)
 
 #endif

@@ -61,6 +61,10 @@ struct GpuFrameConstants {
   // The environment map's GpuEnvironmentMap record by device address (include/environment_data.h;
   // read only where SPEC_ENV_MAP is on), 0 for the constant environment.
   uvec2 environment_map;
+  // The light trees of this frame and the previous one (its render space; this frame's own without
+  // history) by device address (include/light_tree_data.h; read only where SPEC_LIGHT_TREE is on).
+  uvec2 light_tree;
+  uvec2 prev_light_tree;
 };
 
 // history_flags bits.
@@ -70,6 +74,8 @@ CONST_DEF uint HISTORY_LIGHTS_RESELECTED = 4u;  // light selection (emitter tabl
                                                 // the same random numbers choose another light in each frame
 CONST_DEF uint HISTORY_CAMERA_STILL = 8u;  // the camera (and its shutter) is the previous frame's
 CONST_DEF uint HISTORY_LIGHTS_MOVED = 16u; // a punctual light moved or turned (HISTORY_SCENE_MOVED is set with it)
+CONST_DEF uint HISTORY_LIGHTS_CHANGED = 32u;  // with the light tree: some light moved, turned, changed power or level,
+                                              // so a light's probability at a point may differ between the frames
 
 // primary_mode: which camera ray the primary stage traces per pixel (restir/primary_data.h).
 CONST_DEF uint PRIMARY_CENTRE = 0u;  // through the pixel centre and the lens centre, at the frame's instant
@@ -141,6 +147,6 @@ CONST_DEF uint COUNTER_COUNT = 72u;
 STRATA_NAMESPACE_END
 
 #ifdef __cplusplus
-static_assert(sizeof(strata::gpu::GpuFrameConstants) == 368);
+static_assert(sizeof(strata::gpu::GpuFrameConstants) == 384);
 #endif
 #endif

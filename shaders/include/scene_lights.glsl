@@ -2,8 +2,11 @@
 // includes the bridge, never this file): next-event estimation's light sample and its density in
 // either frame, the density of a light hit by another strategy, and the environment. The light
 // table holds the emissive triangles and, in scenes that have them, the punctual lights
-// (KHR_lights_punctual; compiled in by SPEC_PUNCTUAL, bound only then); one alias table chooses
-// among them by power, the environment is chosen with probability env_select_prob: a constant
+// (KHR_lights_punctual; compiled in by SPEC_PUNCTUAL, bound only then). One of two light samplers
+// chooses among them (the session's light_sampler): an alias table by power, or, compiled in by
+// SPEC_LIGHT_TREE, the frame's light tree by importance at the shading point (include/light_tree_data.h;
+// directional lights by power beside it), so that a light's probability depends on where it is
+// chosen from. The environment is chosen with probability env_select_prob: a constant
 // colour (sampled uniformly over the sphere), or an equirectangular map (compiled in by SPEC_ENV_MAP,
 // read by the device address of the frame constants; sampled by luminance x solid angle).
 // Solid-angle densities throughout, except for a punctual light: a delta, whose sample's `pdf` is
@@ -17,6 +20,7 @@
 #include "include/bindings.h"
 #include "include/environment_data.h"
 #include "include/frame_data.h"
+#include "include/light_tree_data.h"
 #include "include/scene_data.h"
 #include "restir/gris.h"
 #include "sampling/emitter_pdf.h"
@@ -31,6 +35,93 @@ layout(set = 0, binding = BINDING_ALIAS, std430) readonly buffer Alias { GpuAlia
 layout(constant_id = SPEC_PUNCTUAL) const bool k_punctual = false;
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer PunctualLights { GpuPunctualLight records[]; };
 GpuPunctualLight punctual_in(bool prev, uint i) { return PunctualLights(prev ? u_frame.prev_lights : u_frame.lights).records[i]; }
+
+// The light tree of either frame (SPEC_LIGHT_TREE), by the device addresses of the frame constants:
+// its header, and the addresses of its arrays.
+layout(constant_id = SPEC_LIGHT_TREE) const bool k_light_tree = false;
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer LightTreeHeaderRef { GpuLightTreeHeader h; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer LightTreeNodes { GpuLightNode nodes[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer LightTreeUvec4s { uvec4 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 8) readonly buffer LightTreeUvec2s { uvec2 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer LightTreeUints { uint v[]; };
+
+struct LightTreeRef {
+  GpuLightTreeHeader h;
+  uvec2 base;
+};
+
+// A 64-bit device address (two words) plus a byte offset.
+uvec2 address_plus(uvec2 a, uint offset) {
+  uint lo = a.x + offset;
+  return uvec2(lo, a.y + (lo < a.x ? 1u : 0u));
+}
+
+LightTreeRef light_tree_of(bool prev) {
+  LightTreeRef t;
+  t.base = prev ? u_frame.prev_light_tree : u_frame.light_tree;
+  t.h = LightTreeHeaderRef(t.base).h;
+  return t;
+}
+
+#define LIGHT_TREE_T LightTreeRef
+#define LIGHT_TREE_NODE(tree, i) LightTreeNodes(address_plus((tree).base, (tree).h.nodes_offset)).nodes[i]
+#define LIGHT_TREE_TRAIL(tree, e) LightTreeUvec4s(address_plus((tree).base, (tree).h.trails_offset)).v[e]
+#define LIGHT_TREE_NODE_COUNT(tree) ((tree).h.node_count)
+#include "sampling/light_tree.h"
+
+// The table entry of emitter triangle (instance, geometry, triangle) in a tree's light table
+// (LIGHT_TREE_NONE where that frame has none): its instance's geometry record, then a binary
+// search of the geometry's triangles.
+uint light_tree_entry(LightTreeRef t, uint instance, uint geometry, uint triangle) {
+  if (instance >= t.h.instance_count) return LIGHT_TREE_NONE;
+  uvec2 inst = LightTreeUvec2s(address_plus(t.base, t.h.instances_offset)).v[instance];
+  if (geometry >= inst.y) return LIGHT_TREE_NONE;
+  uvec2 g = LightTreeUvec2s(address_plus(t.base, t.h.geometries_offset)).v[inst.x + geometry];
+  LightTreeUints tris = LightTreeUints(address_plus(t.base, t.h.triangles_offset));
+  uint lo = g.x, hi = g.x + g.y;  // the first entry whose triangle is >= `triangle` lies in [lo, hi]
+  while (lo < hi) {
+    uint mid = (lo + hi) / 2u;
+    if (tris.v[mid] < triangle) lo = mid + 1u;
+    else hi = mid;
+  }
+  return lo < g.x + g.y && tris.v[lo] == triangle ? lo : LIGHT_TREE_NONE;
+}
+
+// The probability that a tree's sampler picks table entry `entry` at x, given that it does not pick
+// the environment: a directional light's share among them, else the tree's choice.
+float light_tree_select(LightTreeRef t, vec3 x, uint entry) {
+  if (entry == LIGHT_TREE_NONE) return 0.0;
+  LightTreeUvec2s directional = LightTreeUvec2s(address_plus(t.base, t.h.directional_offset));
+  for (uint i = 0u; i < t.h.directional_count; ++i)
+    if (directional.v[i].x == entry) return t.h.directional_prob * uintBitsToFloat(directional.v[i].y);
+  return (1.0 - t.h.directional_prob) * light_tree_pmf(t, x, entry);
+}
+
+// With the tree: what it chooses from v in [0, 1) at x (a directional light by power with
+// directional_prob, else the tree's leaf), and the probability of that choice.
+bool light_tree_sample(LightTreeRef t, vec3 x, float v, out uint entry, out float pmf) {
+  entry = LIGHT_TREE_NONE;
+  pmf = 0.0;
+  if (v < t.h.directional_prob) {
+    LightTreeUvec2s directional = LightTreeUvec2s(address_plus(t.base, t.h.directional_offset));
+    float w = v / t.h.directional_prob, below = 0.0;
+    for (uint i = 0u; i < t.h.directional_count; ++i) {
+      float p = uintBitsToFloat(directional.v[i].y);
+      if (w < below + p || i + 1u == t.h.directional_count) {
+        entry = directional.v[i].x;
+        pmf = t.h.directional_prob * p;
+        return pmf > 0.0;
+      }
+      below += p;
+    }
+    return false;
+  }
+  float w = min((v - t.h.directional_prob) / (1.0 - t.h.directional_prob), 0.99999994);
+  float p;
+  if (!light_tree_choose(t, x, w, entry, p)) return false;
+  pmf = (1.0 - t.h.directional_prob) * p;
+  return pmf > 0.0;
+}
 
 struct LightSample {
   vec3 direction;     // unit, from the shading point
@@ -145,11 +236,20 @@ float environment_pdf(vec3 dir) {
   return u_frame.env_select_prob * environment_direction_pdf(dir);
 }
 
-// The densities with which either frame's light sampler picks a light that another strategy hit
-// (sampling/emitter_pdf.h with that frame's totals): an emitter's point, and the environment.
-float emitter_light_pdf(bool prev, vec3 emission, float area, bool double_sided, float dist, float cos_light) {
-  float total = prev ? u_frame.prev_total_emitter_power : u_frame.total_emitter_power;
+// The density with which either frame's light sampler picks a point on emitter triangle `tri`
+// (instance, geometry, triangle) that another strategy hit from x (that frame's render space),
+// `dist` away under cos_light: with the tree, that frame's tree's
+// probability of the triangle's entry at x, per area, as a solid angle; else sampling/emitter_pdf.h
+// with that frame's totals. `emission` is what the power weighs (SurfaceMaterial::light_emission).
+float emitter_light_pdf(bool prev, vec3 x, uvec3 tri, vec3 emission, float area, bool double_sided, float dist,
+                        float cos_light) {
   float env_select = prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob;
+  if (k_light_tree) {
+    LightTreeRef t = light_tree_of(prev);
+    float pmf = (1.0 - env_select) * light_tree_select(t, x, light_tree_entry(t, tri.x, tri.y, tri.z));
+    return emitter_pdf_solid_angle(pmf, area, dist, cos_light);
+  }
+  float total = prev ? u_frame.prev_total_emitter_power : u_frame.total_emitter_power;
   return emitter_solid_angle_pdf(total, env_select, emission, area, double_sided, dist, cos_light);
 }
 
@@ -159,10 +259,12 @@ float light_pdf_environment(bool prev, vec3 dir) {
   return (prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob) * environment_direction_pdf(dir);
 }
 
-// Whether the emitter power totals of the two frames agree (to 1e-5: with the camera, render-space
-// emitter areas change in their last bits, as GpuScene's light-selection test allows; the
-// environment's share is a session constant), so that a light density is the same in both.
+// Whether a light density is the same in both frames: with the tree, no light changed between them
+// (HISTORY_LIGHTS_CHANGED); else the emitter power totals of the two frames agree (to 1e-5: with
+// the camera, render-space emitter areas change in their last bits, as GpuScene's light-selection
+// test allows; the environment's share is a session constant).
 bool light_totals_unchanged() {
+  if (k_light_tree) return (u_frame.history_flags & HISTORY_LIGHTS_CHANGED) == 0u;
   float power = max(u_frame.total_emitter_power, u_frame.prev_total_emitter_power);
   return !(abs(u_frame.total_emitter_power - u_frame.prev_total_emitter_power) > 1e-5 * power);
 }
@@ -222,25 +324,55 @@ bool punctual_arrival(GpuPunctualLight l, vec3 x, out vec3 dir, out float dist, 
 }
 
 // Punctual light `light` as seen from x in either frame (its record of that frame), as a light
-// sample: `pdf` is the probability with which that frame's light table chooses it.
-bool punctual_light_at(bool prev, uint light, vec3 x, out LightSample ls) {
+// sample whose `pdf` is `pmf`, the probability with which that frame's sampler chose it.
+bool punctual_light_with(bool prev, uint light, vec3 x, float pmf, out LightSample ls) {
   ls = light_sample_none();
   GpuPunctualLight l = punctual_in(prev, light);
   if (!punctual_arrival(l, x, ls.direction, ls.distance, ls.radiance)) return false;
   ls.delta = true;
   ls.light = light;
-  ls.pdf = (1.0 - (prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob)) * l.intensity_pmf.w;
+  ls.pdf = pmf;
   return ls.pdf > 0.0;
+}
+
+// The same, its probability that of the frame's sampler at x: its tree's (the light is entry
+// `emitters + light` of that frame's table), or its power share.
+bool punctual_light_at(bool prev, uint light, vec3 x, out LightSample ls) {
+  float env_select = prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob;
+  float pmf;
+  if (k_light_tree) {
+    LightTreeRef t = light_tree_of(prev);
+    pmf = (1.0 - env_select) * light_tree_select(t, x, t.h.entry_count - u_frame.light_count + light);
+  } else {
+    pmf = (1.0 - env_select) * punctual_in(prev, light).intensity_pmf.w;
+  }
+  return punctual_light_with(prev, light, x, pmf, ls);
 }
 
 const uint LIGHT_ENVIRONMENT = 0xFFFFFFFFu;
 
-// The light that random numbers u choose: LIGHT_ENVIRONMENT, or an entry of the light table (an
-// emitter below emitter_count, a punctual light from there on) by its alias table (u.z, rescaled,
-// picks the column and its coin; u.xy is left for the point on it). False when there is nothing
+// The light that random numbers u choose at x in either frame: LIGHT_ENVIRONMENT, or an entry of the
+// light table (an emitter below `emitters`, that frame's emitter count; a punctual light from there
+// on). u.z picks (rescaled at each choice); u.xy is left for the point on it. With the tree,
+// `pmf` is the probability of the choice in that frame; with the alias table (by power, the
+// current frame's table for both frames) it is left to the caller. False when there is nothing
 // to choose.
-bool choose_light(vec3 u, out uint index) {
+bool choose_light(bool prev, vec3 x, vec3 u, out uint index, out uint emitters, out float pmf) {
   index = LIGHT_ENVIRONMENT;
+  emitters = u_frame.emitter_count;
+  pmf = 0.0;
+  if (k_light_tree) {
+    float env_select = prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob;
+    LightTreeRef t = light_tree_of(prev);
+    emitters = t.h.entry_count - (k_punctual ? u_frame.light_count : 0u);
+    if (u.z < env_select || t.h.entry_count == 0u) {
+      pmf = env_select;
+      return env_select > 0.0;
+    }
+    if (!light_tree_sample(t, x, (u.z - env_select) / (1.0 - env_select), index, pmf)) return false;
+    pmf *= 1.0 - env_select;
+    return true;
+  }
   uint count = light_table_size();
   if (u.z < u_frame.env_select_prob || count == 0u) return u_frame.env_select_prob > 0.0;
   float v = (u.z - u_frame.env_select_prob) / (1.0 - u_frame.env_select_prob);
@@ -267,13 +399,17 @@ LightSample environment_light_sample(bool prev, vec3 u) {
 // it is unusable (a one-sided emitter seen from behind, a degenerate triangle).
 bool sample_light(vec3 x, vec3 u, out LightSample ls) {
   ls = light_sample_none();
-  uint index;
-  if (!choose_light(u, index)) return false;
+  uint index, emitters;
+  float pmf;
+  if (!choose_light(false, x, u, index, emitters, pmf)) return false;
   if (index == LIGHT_ENVIRONMENT) {
     ls = environment_light_sample(false, u);
     return ls.pdf > 0.0;
   }
-  if (k_punctual && index >= u_frame.emitter_count) return punctual_light_at(false, index - u_frame.emitter_count, x, ls);
+  if (k_punctual && index >= emitters) {
+    if (k_light_tree) return punctual_light_with(false, index - emitters, x, pmf, ls);
+    return punctual_light_at(false, index - emitters, x, ls);
+  }
   GpuEmitter e = b_emitters[index];
 
   vec2 b = sample_triangle_barycentrics(u.xy);
@@ -301,26 +437,32 @@ bool sample_light(vec3 x, vec3 u, out LightSample ls) {
   ls.radiance = emitter_radiance(false, e.emission.rgb, ls.instance, ls.geometry, ls.triangle, ls.bary);  // the texel there
   ls.area = e.p0_area.w;
   ls.cos_light = abs(cos_light);
-  float pmf = (1.0 - u_frame.env_select_prob) * e.p1_pmf.w;
+  if (!k_light_tree) pmf = (1.0 - u_frame.env_select_prob) * e.p1_pmf.w;
   ls.pdf = emitter_pdf_solid_angle(pmf, e.p0_area.w, dist, cos_light);
   return ls.pdf > 0.0 && !isinf(ls.pdf);
 }
 
 // Light sample u from x in either frame (the NEE end of a replayed suffix, restir/suffix_replay.glsl).
-// The current frame's is the initial pass's sample_light;
-// in the previous frame the same emitter and barycentrics are chosen and the point is placed on
-// its triangle as the previous frame's instance transform had it (resolve_surface); the same
-// punctual light is where the previous frame's record has it.
+// The current frame's is the initial pass's sample_light; in the previous frame that frame's
+// sampler chooses (the tree: the previous frame's; the alias table: the same entry as this frame's,
+// which HISTORY_LIGHTS_RESELECTED says is the previous frame's choice too), and the point with the
+// same barycentrics is placed on its triangle as the previous frame's instance transform had it
+// (resolve_surface); a punctual light is where the previous frame's record has it. The caller
+// makes sure that the two frames' tables list the same lights (HISTORY_LIGHTS_RESELECTED).
 bool sample_light_in(bool prev, vec3 x, vec3 u, out LightSample ls) {
   if (!prev) return sample_light(x, u, ls);
   ls = light_sample_none();
-  uint index;
-  if (!choose_light(u, index)) return false;
+  uint index, emitters;
+  float pmf;
+  if (!choose_light(true, x, u, index, emitters, pmf)) return false;
   if (index == LIGHT_ENVIRONMENT) {
     ls = environment_light_sample(true, u);
     return ls.pdf > 0.0;
   }
-  if (k_punctual && index >= u_frame.emitter_count) return punctual_light_at(true, index - u_frame.emitter_count, x, ls);
+  if (k_punctual && index >= emitters) {
+    if (k_light_tree) return punctual_light_with(true, index - emitters, x, pmf, ls);
+    return punctual_light_at(true, index - emitters, x, ls);
+  }
   GpuEmitter e = b_emitters[index];
   vec2 b = sample_triangle_barycentrics(u.xy);
   SurfacePoint p;
@@ -347,7 +489,8 @@ bool sample_light_in(bool prev, vec3 x, vec3 u, out LightSample ls) {
   ls.bary = p.bary;
   ls.area = rs.hit.area;
   ls.cos_light = abs(cos_light);
-  ls.pdf = gris_sanitize(emitter_light_pdf(true, e.emission.rgb, rs.hit.area, double_sided, dist, ls.cos_light));
+  ls.pdf = gris_sanitize(k_light_tree ? emitter_pdf_solid_angle(pmf, rs.hit.area, dist, ls.cos_light)
+                                      : emitter_light_pdf(true, x, uvec3(p.instance, p.geometry, p.triangle), e.emission.rgb, rs.hit.area, double_sided, dist, ls.cos_light));
   return ls.pdf > 0.0 && !isinf(ls.pdf);
 }
 

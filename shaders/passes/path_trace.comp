@@ -53,6 +53,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
   vec3 radiance = vec3(0.0);
   vec3 throughput = vec3(1.0);
   float prev_bsdf_pdf = 0.0;  // 0 marks the camera vertex: emission seen directly is not MIS-weighted
+  vec3 prev_position = vec3(0.0);  // the surface point the ray left, where its NEE sampled lights
   g_rays_primary++;
 
   for (uint depth = 1u; depth <= u_frame.max_depth; ++depth) {
@@ -74,7 +75,9 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     if (any(greaterThan(emission, vec3(0.0))) && (front || double_sided)) {
       float w = 1.0;
       if (k_emitters && prev_bsdf_pdf > 0.0) {
-        w = mis_power(prev_bsdf_pdf, emitter_light_pdf(false, m.light_emission, s.area, double_sided, rh.t, cos_hit));
+        float light_pdf = emitter_light_pdf(false, prev_position, uvec3(rh.instance, rh.geometry, rh.triangle), m.light_emission,
+                                            s.area, double_sided, rh.t, cos_hit);
+        w = mis_power(prev_bsdf_pdf, light_pdf);
       }
       radiance += throughput * emission * w;
     }
@@ -119,6 +122,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     if (dot(dir, ng) <= 0.0) break;  // shading normal sent the ray through the surface
     throughput *= weight;
     prev_bsdf_pdf = pdf;
+    prev_position = s.position;
     origin = x;
 
     if (float(depth) >= RR_START_DEPTH) {

@@ -221,7 +221,7 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
       w = load_vertex(false, h, d, 0.0);
       edge = length(w.position - v.position);
       le = w.emission;
-      pl = light_pdf_emitter(false, w.material_emission, w.area, w.double_sided, edge, w.cos_in);
+      pl = light_pdf_emitter(false, v, w, edge);
     } else {
       le = environment_radiance(d);
       pl = light_pdf_environment(false, d);

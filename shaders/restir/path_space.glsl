@@ -345,7 +345,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
       if (path_end) {
         if (rule_end(v, false, edge, camera_distance, w.cos_in)) return shift_fail(r, SHIFT_FAIL_STRUCTURE);
         le = w.emission;
-        pl = light_pdf_emitter(prev, w.material_emission, w.area, w.double_sided, edge, w.cos_in);
+        pl = light_pdf_emitter(prev, v, w, edge);
       } else if (rule_intermediate(v, w, edge, camera_distance)) {
         return shift_fail(r, SHIFT_FAIL_STRUCTURE);
       }
@@ -444,7 +444,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
       tail = lk.radiance;  // NEE is the light's only strategy: MIS weight 1
       r.light_pdf_end = lk.pdf;
     } else {
-      float pl_k = light_pdf_emitter(prev, xk.material_emission, xk.area, xk.double_sided, dist, xk.cos_in);
+      float pl_k = light_pdf_emitter(prev, v, xk, dist);
       tail = xk.emission * technique_weight(nee, pl_k, scatter_pdf(v, d));
     }
     if (!replay && !(luminance(tail) > 0.0)) return shift_fail(r, SHIFT_FAIL_ZERO);

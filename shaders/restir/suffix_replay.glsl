@@ -160,7 +160,7 @@ SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {
       // An NEE end found along the kept omega'_k (j = k) must lie where NEE samples.
       if (nee && w.cos_in < SHIFT_MIN_COS) return replay_fail(r, SHIFT_FAIL_STRUCTURE);
       le = w.emission;
-      pl = light_pdf_emitter(prev, w.material_emission, w.area, w.double_sided, length(w.position - v.position), w.cos_in);
+      pl = light_pdf_emitter(prev, v, w, length(w.position - v.position));
     } else {
       le = environment_radiance(dir);
       pl = light_pdf_environment(prev, dir);
