@@ -2,13 +2,13 @@
 // two bounces away from the light: the case ReSTIR's path reuse is for. The room (10 m x 14 m,
 // 5 m high: x in [-5, 5], z in [-7, 7]) has a floor of stone tiles (a generated texture), plaster
 // walls and ceiling, and no emitter inside. Light comes from a sun (a KHR_lights_punctual
-// directional light, 6 lux, 49 degrees up from the -X side) and a sky (a generated 64 x 32 HDR
+// directional light, 8 lux, 49 degrees up from the -X side) and a sky (a generated 64 x 32 HDR
 // map, blue with a glow about the sun and a dim ground below the horizon) through real holes in
 // the geometry, each with a reveal (the wall's depth): three tall windows in the left wall, a
 // clerestory band high in the back wall and a 3 m x 4 m skylight with a 0.6 m shaft. The sun
 // draws bright patches on the floor under the left windows and, through the skylight, near the
 // right wall; those patches light the rest of the room. Two columns stand at the back, a potted
-// plant of alpha-masked (MASK, double-sided) leaf cards by the right wall; a blue pillar slides to and
+// plant of alpha-masked (MASK, double-sided) leaf cards in the back right corner; a blue pillar slides to and
 // fro through the skylight's sun patch and a crate turns in a window's patch. The camera dollies
 // along the front wall, looking in. Deterministic; the tile texture is 64 x 64 texels.
 #include <algorithm>
@@ -110,7 +110,7 @@ void add_furniture(SceneBuilder& b, uint32_t stone, uint32_t leaf) {
   const uint32_t clay = b.matte("terracotta", {0.55f, 0.27f, 0.16f});
   const Primitive pot = cylinder(0.3f, 0.5f, 10, clay);
   const Primitive crown = leaf_cards(32, 8, 0.5f, 0.3f, 0.55f, 0.2f, leaf, 0xa11u);
-  b.instance("plant", b.mesh("plant", {pot, crown}), glm::translate(glm::mat4(1.0f), {3.9f, 0.0f, 2.0f}));
+  b.instance("plant", b.mesh("plant", {pot, crown}), glm::translate(glm::mat4(1.0f), {4.1f, 0.0f, -6.1f}));
 
   // The pillar slides along z through the skylight's sun patch and back, once over the animation.
   const uint32_t paint = b.material("blue paint", {0.15f, 0.25f, 0.55f}, 0.0f, 0.4f);
@@ -148,7 +148,7 @@ Scene make_atrium() {
 
   add_room(b, floor, plaster);
   add_furniture(b, stone, leaf);
-  b.light(light_at("sun", LightType::kDirectional, {1.0f, 0.93f, 0.82f}, 6.0f, glm::vec3(0.0f), kSunTravel));
+  b.light(light_at("sun", LightType::kDirectional, {1.0f, 0.93f, 0.82f}, 8.0f, glm::vec3(0.0f), kSunTravel));
   s.environment.map = sky();
 
   auto dolly = [](uint32_t f) {

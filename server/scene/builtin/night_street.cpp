@@ -3,7 +3,7 @@
 // A road (asphalt texture, a dashed centre line) between two raised sidewalks (paving slabs) runs
 // 66 m past six buildings a side (stone facades, three tints of one texture, 12-18 m tall) to a
 // cross street closed by a far facade with a billboard. Every facade has a grid of windows, small
-// quads 2 cm in front of it: most lit (six emissive materials, warm to cool, radiance 0.5-3), some
+// quads 2 cm in front of it: most lit (six emissive materials, warm to cool, radiance 0.2-1.5), some
 // dark glass; each building has a dark shop window and most a three-bar neon sign (emissive).
 // Five small trees of alpha-masked (MASK, double-sided) leaf cards stand on the sidewalks. The
 // 64 punctual lights (street lamps, shop lights, swaying lanterns, two driving cars with their
@@ -212,10 +212,10 @@ Scene make_night_street() {
   }
   p.glass = b.material("dark glass", {0.03f, 0.035f, 0.04f}, 0.0f, 0.15f);
   p.billboard = b.matte("billboard", {0.85f, 0.82f, 0.75f});
-  const glm::vec3 window_light[6] = {{2.4f, 1.6f, 0.8f},  {1.2f, 0.75f, 0.35f}, {3.0f, 2.4f, 1.6f},
-                                     {1.4f, 1.7f, 2.0f},  {0.35f, 0.5f, 1.1f},  {0.6f, 0.4f, 0.25f}};
+  const glm::vec3 window_light[6] = {{1.2f, 0.7f, 0.3f},  {0.6f, 0.35f, 0.15f}, {1.5f, 1.1f, 0.65f},
+                                     {0.7f, 0.85f, 1.0f}, {0.2f, 0.3f, 0.7f},   {0.35f, 0.22f, 0.12f}};
   for (uint32_t k = 0; k < 6; ++k) p.lit[k] = b.emitter("window " + std::to_string(k), window_light[k]);
-  const glm::vec3 neon[4] = {{8.0f, 0.6f, 0.9f}, {0.5f, 4.5f, 7.0f}, {7.0f, 3.5f, 0.5f}, {2.0f, 7.0f, 1.5f}};
+  const glm::vec3 neon[4] = {{4.0f, 0.3f, 0.5f}, {0.3f, 2.2f, 3.5f}, {3.5f, 1.6f, 0.2f}, {0.8f, 3.5f, 0.6f}};
   for (uint32_t k = 0; k < 4; ++k) p.neon[k] = b.emitter("neon " + std::to_string(k), neon[k]);
   const uint32_t leaf = b.material("leaf", glm::vec3(1.0f), 0.0f, 0.6f);
   s.materials[leaf].double_sided = true;
@@ -235,11 +235,12 @@ Scene make_night_street() {
   add_lights(b, fixtures);
   s.environment.map = night_sky();
 
-  // A walk down the left sidewalk, 2 m/s, a 2 cm bob every step (0.5 s), looking down the street.
+  // A walk down the left sidewalk, 1 m from the facade, 2 m/s, a 2 cm bob every step (0.5 s),
+  // looking down the street; it passes a lamp post at z = 2 halfway and a lantern at z = -2.5.
   auto walk_path = [](uint32_t f) {
     const float t = key_time(f);
-    const glm::vec3 eye(-4.9f, 1.65f + 0.02f * std::sin(2.0f * kPi * t / 0.5f), 7.0f - 2.0f * t);
-    return std::pair{eye, eye + glm::vec3(4.6f + 0.25f * t, 1.2f, -40.0f)};
+    const glm::vec3 eye(-6.0f, 1.65f + 0.02f * std::sin(2.0f * kPi * t / 0.5f), 7.0f - 2.0f * t);
+    return std::pair{eye, eye + glm::vec3(5.5f + 0.25f * t, 1.2f, -40.0f)};
   };
   b.camera(walk_path(0).first, walk_path(0).second, 0.9f);
   b.camera_path(walk_path);

@@ -9,7 +9,7 @@
 //      the camera in the left lane at 11 m/s, each with two headlight spots and two red tail
 //      lights that follow the car;
 //   16 far lights: floodlights in the cross street at the far end aimed at a billboard, and
-//      high-mast sodium lights along the cross street, 60-80 m from the camera. They carry most of
+//      high-mast sodium spots 12 m up along the cross street, 60-80 m from the camera. They carry most of
 //      the scene's power but light little of what the camera sees: a light picked in proportion
 //      to its power is mostly one of them.
 #include <cmath>
@@ -40,7 +40,7 @@ void add_street_lamps(SceneBuilder& b, uint32_t metal, Pcg32& rng) {
   posts.material = metal;
   for (uint32_t k = 0; k < 16; ++k) {
     const float side = k < 8 ? -1.0f : 1.0f;  // left side first
-    const float z = kNearZ - 2.0f - 8.0f * float(k % 8) - (side > 0.0f ? 4.0f : 0.0f);
+    const float z = kNearZ - 8.0f * float(k % 8) - (side > 0.0f ? 4.0f : 0.0f);
     const float pole_x = side * (kRoadHalfWidth + 0.4f), light_x = side * (kRoadHalfWidth - 0.7f);
     append(posts, transformed(cylinder(0.08f, 6.0f, 6, metal), at({pole_x, kCurb, z})));
     append(posts, transformed(box({0.55f, 0.04f, 0.04f}, metal), at({0.5f * (pole_x + light_x), 6.0f, z})));
@@ -148,7 +148,8 @@ void add_car(SceneBuilder& b, const std::string& name, uint32_t mesh, float x, f
   }
 }
 
-// Floodlights on the cross street's far kerb aimed up at the billboard, and high masts along it.
+// Floodlights on the cross street's far kerb aimed up at the billboard, and high masts along it
+// shining down on it.
 void add_far_lights(SceneBuilder& b) {
   const glm::vec3 billboard(0.0f, 10.5f, kFarFacadeZ);
   for (uint32_t k = 0; k < 8; ++k) {
@@ -156,9 +157,9 @@ void add_far_lights(SceneBuilder& b) {
     b.light(spot("floodlight " + std::to_string(k), {0.85f, 0.9f, 1.0f}, 500.0f, p, billboard - p, 8.0f, 16.0f));
   }
   for (uint32_t k = 0; k < 8; ++k) {
-    const float x = (k % 2 == 0 ? -1.0f : 1.0f) * (10.0f + 4.0f * float(k / 2));
-    b.light(light_at("high mast " + std::to_string(k), LightType::kPoint, {1.0f, 0.7f, 0.4f}, 300.0f,
-                     {x, 9.0f, kFarFacadeZ + 4.0f}, {0, 0, -1}));
+    const float x = (k % 2 == 0 ? -1.0f : 1.0f) * (6.0f + 5.0f * float(k / 2));
+    b.light(spot("high mast " + std::to_string(k), {1.0f, 0.7f, 0.4f}, 400.0f, {x, 12.0f, kFarFacadeZ + 4.0f},
+                 {0.0f, -1.0f, 0.0f}, 40.0f, 65.0f));
   }
 }
 
