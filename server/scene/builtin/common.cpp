@@ -98,6 +98,11 @@ void SceneBuilder::lod_key(uint32_t frame, uint32_t instance, uint32_t level) {
   scene_.animation.lod_schedule.push_back(LodKey{key_time(frame), instance, level});
 }
 
+uint32_t SceneBuilder::light(Light light) {
+  scene_.lights.push_back(std::move(light));
+  return static_cast<uint32_t>(scene_.lights.size() - 1);
+}
+
 Scene SceneBuilder::finish() {
   auto& schedule = scene_.animation.lod_schedule;
   std::stable_sort(schedule.begin(), schedule.end(),

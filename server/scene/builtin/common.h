@@ -60,6 +60,12 @@ class SceneBuilder {
   template <typename Motion>
   void track(uint32_t instance, Motion motion);
   void lod_key(uint32_t frame, uint32_t instance, uint32_t level);
+  // Adds a punctual light; returns its index.
+  uint32_t light(Light light);
+  // Light keys on every frame from `motion(frame)` (a LightTrack); also sets the light's rest
+  // transform to the frame-0 key, so Light::transform is what frame 0 shows.
+  template <typename Motion>
+  void light_track(uint32_t light, Motion motion);
 
   Scene& scene() { return scene_; }
   Scene finish();  // sorts the LoD schedule by time and tracks by instance
@@ -89,6 +95,18 @@ void SceneBuilder::track(uint32_t instance, Motion motion) {
   }
   scene_.instances[instance].transform = compose_key(track.keys.front());
   scene_.animation.tracks.push_back(std::move(track));
+}
+
+template <typename Motion>
+void SceneBuilder::light_track(uint32_t light, Motion motion) {
+  LightTrack track{light, {}};
+  for (uint32_t f = 0; f < kFrameCount; ++f) {
+    TransformKey key = motion(f);
+    key.time = key_time(f);
+    track.keys.push_back(key);
+  }
+  scene_.lights[light].transform = compose_key(track.keys.front());
+  scene_.animation.light_tracks.push_back(std::move(track));
 }
 
 }  // namespace strata::scene::builtin

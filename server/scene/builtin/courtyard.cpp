@@ -18,25 +18,11 @@
 #include "scene/builtin/common.h"
 #include "scene/builtin/random.h"
 #include "scene/builtin/shapes.h"
+#include "scene/builtin/textures.h"
 #include "scene/environment_map.h"
-#include "scene/texture_mips.h"
 
 namespace strata::scene::builtin {
 namespace {
-
-uint32_t rgba(float r, float g, float b, float a = 1.0f) {
-  auto byte = [](float v) { return uint32_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
-  return byte(r) | byte(g) << 8 | byte(b) << 16 | byte(a) << 24;
-}
-
-// A texture of a generated image (texel(x, y) -> RGBA8 word), trilinear and repeating.
-template <typename Texel>
-int32_t add_generated(Scene& s, const std::string& name, uint32_t w, uint32_t h, ColorSpace space, Texel texel) {
-  image::Rgba8Image img{w, h, {}};
-  for (uint32_t y = 0; y < h; ++y)
-    for (uint32_t x = 0; x < w; ++x) img.texels.push_back(texel(x, y));
-  return add_texture(s.textures, img, space, name);
-}
 
 // Paving: 4 x 4 stones of 16 texels with 2-texel grout; each stone its own shade (base colour) and
 // roughness (metallic-roughness G; grout rough).
@@ -72,21 +58,6 @@ void brick(Scene& s, Material& m) {
     return rgba(0.6f * v, 0.25f * v, 0.18f * v);
   });
   m.base_color_texture.transform.scale = glm::vec2(3.0f, 1.5f);
-}
-
-// A leaf card: two leaves (ellipses) on a transparent ground, their veins darker.
-int32_t leaf_texture(Scene& s) {
-  return add_generated(s, "leaf", 32, 32, ColorSpace::kSrgb, [](uint32_t x, uint32_t y) {
-    const glm::vec2 p = (glm::vec2(float(x), float(y)) + 0.5f) / 32.0f;
-    for (const glm::vec2 c : {glm::vec2(0.32f, 0.4f), glm::vec2(0.68f, 0.62f)}) {
-      const glm::vec2 d = (p - c) / glm::vec2(0.16f, 0.3f);
-      if (glm::dot(d, d) <= 1.0f) {
-        const float vein = std::abs(p.x - c.x) < 0.02f ? 0.6f : 1.0f;
-        return rgba(0.18f * vein, 0.42f * vein, 0.1f * vein, 1.0f);
-      }
-    }
-    return rgba(0.18f, 0.42f, 0.1f, 0.0f);
-  });
 }
 
 // The sign's emission: three warm bars on black (32 x 16 texels).

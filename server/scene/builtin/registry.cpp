@@ -11,7 +11,7 @@ namespace {
 
 using Generator = Scene (*)();
 // The order is the order builtin_scene_names() reports; cornell, the default, comes first.
-constexpr std::array<std::pair<const char*, Generator>, 12> kBuiltins = {{
+constexpr std::array<std::pair<const char*, Generator>, 14> kBuiltins = {{
     {"cornell", builtin::make_cornell},
     {"cornell-lamps", builtin::make_cornell_lamps},
     {"carousel", builtin::make_carousel},
@@ -24,6 +24,8 @@ constexpr std::array<std::pair<const char*, Generator>, 12> kBuiltins = {{
     {"lod-bounce", builtin::make_lod_bounce},
     {"courtyard", builtin::make_courtyard},
     {"characters", builtin::make_characters},
+    {"night-street", builtin::make_night_street},
+    {"atrium", builtin::make_atrium},
 }};
 
 }  // namespace

@@ -1,7 +1,9 @@
 #include "scene/builtin/shapes.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include "scene/builtin/random.h"
 #include "scene/normals.h"
 
 namespace strata::scene::builtin {
@@ -161,6 +163,71 @@ Primitive grid_from_heights(float size, uint32_t n, uint32_t material,
     }
   }
   p.normals = area_weighted_normals(p.positions, p.indices);
+  return p;
+}
+
+Primitive leaf_cards(uint32_t count, uint32_t per_ring, float y0, float step, float size, float radius,
+                     uint32_t material, uint64_t seed) {
+  Primitive cards;
+  cards.material = material;
+  Pcg32 rng(seed);
+  for (uint32_t k = 0; k < count; ++k) {
+    const uint32_t ring = k / per_ring;
+    const float angle = 2.0f * 3.14159265358979f * (fraction(k % per_ring, per_ring) + 0.37f * float(ring)) +
+                        rng.uniform(-0.2f, 0.2f);
+    const float tilt = rng.uniform(-0.5f, 0.5f);
+    const glm::vec3 out(std::cos(angle), 0.0f, std::sin(angle));
+    const glm::vec3 u = size * glm::vec3(-out.z, 0.0f, out.x);
+    const glm::vec3 v = size * glm::normalize(glm::vec3(0.0f, 1.0f, 0.0f) + tilt * out);
+    append(cards, quad(radius * out + glm::vec3(0.0f, y0 + step * float(ring), 0.0f) - 0.5f * u, u, v, material));
+  }
+  return cards;
+}
+
+Primitive wall_with_openings(const glm::vec3& origin, const glm::vec3& u_dir, const glm::vec3& v_dir, float width,
+                             float height, const std::vector<Opening>& openings, float depth, uint32_t material) {
+  // Cut the wall along every opening's edges; keep the cells no opening covers.
+  std::vector<float> s_cuts{0.0f, width}, t_cuts{0.0f, height};
+  for (const Opening& o : openings) {
+    s_cuts.insert(s_cuts.end(), {o.s0, o.s1});
+    t_cuts.insert(t_cuts.end(), {o.t0, o.t1});
+  }
+  for (auto* cuts : {&s_cuts, &t_cuts}) {
+    std::sort(cuts->begin(), cuts->end());
+    cuts->erase(std::unique(cuts->begin(), cuts->end()), cuts->end());
+  }
+  auto at = [&](float s, float t) { return origin + s * u_dir + t * v_dir; };
+  Primitive wall;
+  wall.material = material;
+  for (size_t i = 0; i + 1 < s_cuts.size(); ++i) {
+    for (size_t j = 0; j + 1 < t_cuts.size(); ++j) {
+      const float s = 0.5f * (s_cuts[i] + s_cuts[i + 1]), t = 0.5f * (t_cuts[j] + t_cuts[j + 1]);
+      const bool open = std::any_of(openings.begin(), openings.end(),
+                                    [&](const Opening& o) { return s > o.s0 && s < o.s1 && t > o.t0 && t < o.t1; });
+      if (open) continue;
+      Primitive cell = quad(at(s_cuts[i], t_cuts[j]), (s_cuts[i + 1] - s_cuts[i]) * u_dir,
+                            (t_cuts[j + 1] - t_cuts[j]) * v_dir, material);
+      for (glm::vec2& uv : cell.uvs)
+        uv = {s_cuts[i] + uv.x * (s_cuts[i + 1] - s_cuts[i]), t_cuts[j] + uv.y * (t_cuts[j + 1] - t_cuts[j])};
+      append(wall, cell);
+    }
+  }
+  // The reveals: sill (facing v), lintel (-v), jambs (u at s0, -u at s1); `back` points away from
+  // the wall's face.
+  const glm::vec3 back = -depth * glm::normalize(glm::cross(u_dir, v_dir));
+  for (const Opening& o : openings) {
+    const glm::vec3 w = (o.s1 - o.s0) * u_dir, h = (o.t1 - o.t0) * v_dir;
+    for (Primitive side : {quad(at(o.s0, o.t0), w, back, material), quad(at(o.s0, o.t1), back, w, material),
+                           quad(at(o.s0, o.t0), back, h, material), quad(at(o.s1, o.t0), h, back, material)}) {
+      append(wall, side);
+    }
+  }
+  return wall;
+}
+
+Primitive with_planar_uvs(Primitive p, const glm::vec3& u_dir, const glm::vec3& v_dir) {
+  for (size_t v = 0; v < p.positions.size(); ++v)
+    p.uvs[v] = {glm::dot(p.positions[v], u_dir), glm::dot(p.positions[v], v_dir)};
   return p;
 }
 

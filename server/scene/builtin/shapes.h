@@ -39,6 +39,25 @@ Primitive height_field(float size, uint32_t n, uint32_t material, Height height)
 // into the box.
 std::vector<Primitive> cornell_walls(uint32_t white, uint32_t red, uint32_t green);
 
+// `count` leaf cards (size x size squares, for a double-sided MASK material) around the +Y axis
+// `radius` out, `per_ring` to a ring, rings from height y0 up by `step`, each card leaning at
+// random (seeded, so a crown builds the same way every time).
+Primitive leaf_cards(uint32_t count, uint32_t per_ring, float y0, float step, float size, float radius,
+                     uint32_t material, uint64_t seed);
+
+// A rectangular opening in a wall: [s0, s1] along the wall's width, [t0, t1] up its height (metres).
+struct Opening {
+  float s0, s1, t0, t1;
+};
+// A wall origin + s u_dir + t v_dir (s in [0, width], t in [0, height]) facing along
+// cross(u_dir, v_dir), with rectangular holes and, around each hole, a reveal `depth` deep behind
+// the wall (four quads facing into the hole). UVs are metres (s, t) on the wall, [0, 1]^2 on each reveal.
+Primitive wall_with_openings(const glm::vec3& origin, const glm::vec3& u_dir, const glm::vec3& v_dir, float width,
+                             float height, const std::vector<Opening>& openings, float depth, uint32_t material);
+
+// UVs in metres projected onto the plane of `u_dir` and `v_dir` (unit vectors): uv = (p.u_dir, p.v_dir).
+Primitive with_planar_uvs(Primitive p, const glm::vec3& u_dir, const glm::vec3& v_dir);
+
 // Applies `m` to positions and normals (normals by the inverse transpose).
 Primitive transformed(Primitive p, const glm::mat4& m);
 // Appends `b` to `a` (same material assumed: a's is kept).
