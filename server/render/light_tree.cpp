@@ -91,14 +91,16 @@ class Builder {
     tree_.nodes.push_back(node_of(all));
     if (end - begin == 1) {
       const uint32_t entry = items[begin].entry;
-      tree_.nodes[index].links = glm::uvec4(entry, gpu::LIGHT_NODE_LEAF | flags_of(all), 0u, 0u);
+      tree_.nodes[index].links.x = entry;
+      tree_.nodes[index].links.y = gpu::LIGHT_NODE_LEAF | flags_of(all);
       tree_.trails[entry] = glm::uvec4(uint32_t(trail), uint32_t(trail >> 32), depth, 0u);
       return index;
     }
     const size_t mid = split(items, begin, end, depth);
     build(items, begin, mid, depth + 1, trail);
     const uint32_t second = build(items, mid, end, depth + 1, trail | (uint64_t(1) << depth));
-    tree_.nodes[index].links = glm::uvec4(second, flags_of(all), 0u, 0u);
+    tree_.nodes[index].links.x = second;
+    tree_.nodes[index].links.y = flags_of(all);
     return index;
   }
 
@@ -108,8 +110,10 @@ class Builder {
   static gpu::GpuLightNode node_of(const Bounds& b) {
     gpu::GpuLightNode n{};
     n.lo_power = glm::vec4(b.lo, float(b.power));
-    n.hi_spread = glm::vec4(b.hi, b.cone.theta_o);
-    n.axis_emit = glm::vec4(b.cone.axis, b.cone.theta_e);
+    n.hi_cos_o = glm::vec4(b.hi, std::cos(b.cone.theta_o));
+    n.axis_cos_e = glm::vec4(b.cone.axis, std::cos(b.cone.theta_e));
+    const float sin_o = std::sin(b.cone.theta_o);
+    std::memcpy(&n.links.z, &sin_o, sizeof sin_o);
     return n;
   }
 

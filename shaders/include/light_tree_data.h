@@ -17,9 +17,9 @@ STRATA_NAMESPACE_BEGIN
 // table entry links.x.
 struct GpuLightNode {
   vec4 lo_power;       // xyz lower corner of the bounds (render space), w power (the light table's unit)
-  vec4 hi_spread;      // xyz upper corner, w theta_o: half-angle of the cone holding every emitter's normal
-  vec4 axis_emit;      // xyz the cone's unit axis, w theta_e: how far from its normal an emitter emits
-  uvec4 links;         // x second child or (leaf) entry, y LIGHT_NODE_* flags, zw 0
+  vec4 hi_cos_o;       // xyz upper corner, w cos theta_o: theta_o the half-angle of the cone holding every emitter's normal
+  vec4 axis_cos_e;     // xyz the cone's unit axis, w cos theta_e: theta_e how far from its normal an emitter emits
+  uvec4 links;         // x second child or (leaf) entry, y LIGHT_NODE_* flags, z sin theta_o (float bits), w 0
 };
 
 CONST_DEF uint LIGHT_NODE_LEAF = 1u;

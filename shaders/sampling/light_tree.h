@@ -13,9 +13,9 @@
 
 STRATA_NAMESPACE_BEGIN
 
-// How far past its bound an angle still counts as inside (radians), so that float rounding of the
-// bounds never culls a light that reaches x; and the least cosine factor of a node not culled.
-CONST_DEF float LIGHT_TREE_ANGLE_SLACK = 1e-3f;
+// How far below its bound a cosine still counts as inside, so that float rounding of the bounds
+// never culls a light that reaches x; and the least cosine factor of a node not culled.
+CONST_DEF float LIGHT_TREE_COS_SLACK = 1e-3f;
 CONST_DEF float LIGHT_TREE_MIN_COS = 1e-3f;
 
 // The importance of a node at shading point x (Conty Estevez & Kulla 2018, Eq. 3, without the
@@ -24,26 +24,34 @@ CONST_DEF float LIGHT_TREE_MIN_COS = 1e-3f;
 // of theta' = max(0, theta_w - theta_o - theta_b), the least angle between an emitter normal of the
 // cone and the direction to x that the bounds allow (theta_w: axis to x; theta_b: half the angle
 // the bounds subtend), and 0 where theta' is past theta_e: no light below emits towards x. Positive
-// wherever some light below can reach x, which is what keeps the estimator unbiased.
+// wherever some light below can reach x, which is what keeps the estimator unbiased. The angle
+// differences by their cosines and sines (cos(a - b) = cos a cos b + sin a sin b), no inverse trigonometry.
 INLINE float light_node_importance(GpuLightNode n, vec3 x) {
   float power = n.lo_power.w;
   if (!(power > 0.0f)) return 0.0f;
   vec3 lo = vec3(n.lo_power.x, n.lo_power.y, n.lo_power.z);
-  vec3 hi = vec3(n.hi_spread.x, n.hi_spread.y, n.hi_spread.z);
+  vec3 hi = vec3(n.hi_cos_o.x, n.hi_cos_o.y, n.hi_cos_o.z);
   vec3 half_extent = 0.5f * (hi - lo);
   vec3 d = x - (lo + half_extent);
   float r2 = dot(half_extent, half_extent);
   float d2 = dot(d, d);
   float dist2 = max(max(d2, r2), 1e-20f);
   if (d2 <= r2) return power / dist2;  // x within the bounding sphere: every orientation can face it
-  vec3 axis = vec3(n.axis_emit.x, n.axis_emit.y, n.axis_emit.z);
-  float cos_w = dot(axis, d) / sqrt(d2);
+  vec3 axis = vec3(n.axis_cos_e.x, n.axis_cos_e.y, n.axis_cos_e.z);
+  float cos_w = clamp(dot(axis, d) / sqrt(d2), -1.0f, 1.0f);
   if ((n.links.y & LIGHT_NODE_TWO_SIDED) != 0u) cos_w = abs(cos_w);
-  float theta_w = acos(clamp(cos_w, -1.0f, 1.0f));
-  float theta_b = asin(clamp(sqrt(r2 / d2), 0.0f, 1.0f));
-  float theta = max(0.0f, theta_w - n.hi_spread.w - theta_b);
-  if (theta >= n.axis_emit.w + LIGHT_TREE_ANGLE_SLACK) return 0.0f;
-  return power * max(cos(theta), LIGHT_TREE_MIN_COS) / dist2;
+  float sin_w = sqrt(max(0.0f, 1.0f - cos_w * cos_w));
+  // theta_x = max(0, theta_w - theta_o)
+  float cos_o = n.hi_cos_o.w, sin_o = uintBitsToFloat(n.links.z);
+  bool inside_o = cos_w >= cos_o;
+  float cos_x = inside_o ? 1.0f : cos_w * cos_o + sin_w * sin_o;
+  float sin_x = inside_o ? 0.0f : sin_w * cos_o - cos_w * sin_o;
+  // theta' = max(0, theta_x - theta_b), sin^2 theta_b = r^2 / d^2
+  float sin_b2 = r2 / d2;
+  float cos_b = sqrt(max(0.0f, 1.0f - sin_b2));
+  float cos_p = cos_x >= cos_b ? 1.0f : cos_x * cos_b + sin_x * sqrt(sin_b2);
+  if (cos_p <= n.axis_cos_e.w - LIGHT_TREE_COS_SLACK) return 0.0f;
+  return power * max(cos_p, LIGHT_TREE_MIN_COS) / dist2;
 }
 
 // The probabilities of interior node `node`'s first and second child at x: each one's importance

@@ -75,7 +75,7 @@ std::vector<Case> cases() {
   v.push_back({"pt_moving", {.method = "pt", .state = moving_lights, .options = tree}});
   v.push_back({"di_moving", {.method = "restir-di", .max_depth = 2, .state = moving_lights, .options = tree_temporal}});
   v.push_back({"gather_moving", {.method = "restir-gather", .state = moving_lights, .options = tree}});
-  v.push_back({"gather_still", {.method = "restir-gather", .options = tree}});
+  v.push_back({"gather_still", {.method = "restir-gather", .options = tree_temporal}});  // stored suffixes kept
   v.push_back({"splat_moving", {.method = "restir-splat", .state = moving_lights, .options = tree_temporal}});
   return v;
 }

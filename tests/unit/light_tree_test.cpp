@@ -172,7 +172,7 @@ TEST(LightTree, FindsEachEmittersEntryAndKeepsItsBounds) {
     EXPECT_NEAR(n.lo_power.w, a.lo_power.w + b.lo_power.w, 1e-4 * n.lo_power.w);
     for (int k = 0; k < 3; ++k) {
       EXPECT_LE(n.lo_power[k], std::min(a.lo_power[k], b.lo_power[k]));
-      EXPECT_GE(n.hi_spread[k], std::max(a.hi_spread[k], b.hi_spread[k]));
+      EXPECT_GE(n.hi_cos_o[k], std::max(a.hi_cos_o[k], b.hi_cos_o[k]));
     }
   }
   for (const glm::uvec4& t : tree.trails) EXPECT_TRUE(t.z == gpu::LIGHT_TREE_NONE || t.z <= gpu::LIGHT_TREE_MAX_DEPTH);
