@@ -41,8 +41,8 @@ std::vector<uint8_t> export_glb(const Scene& scene);
 void export_glb_file(const Scene& scene, const std::filesystem::path& path);
 
 // Deterministic procedural scenes: cornell (the default), cornell-lamps, carousel, carousel-bounce,
-// lod-cliff, chess, foliage, overlap-uv, stiff, lod-bounce, courtyard, characters, night-street,
-// atrium (scene/builtin/).
+// lod-cliff, chess, foliage, overlap-uv, stiff, lod-bounce, courtyard, night-street, atrium,
+// characters (scene/builtin/).
 std::vector<std::string> builtin_scene_names();
 bool is_builtin_scene(const std::string& name);
 Scene builtin_scene(const std::string& name);  // throws SceneError for an unknown name

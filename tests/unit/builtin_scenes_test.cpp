@@ -111,8 +111,8 @@ INSTANTIATE_TEST_SUITE_P(Builtin, BuiltinScene, ::testing::ValuesIn(builtin_scen
 TEST(BuiltinRegistry, NamesCornellFirstAndRejectsUnknownNames) {
   const std::vector<std::string> names = builtin_scene_names();
   EXPECT_EQ(names, (std::vector<std::string>{"cornell", "cornell-lamps", "carousel", "carousel-bounce", "lod-cliff", "chess",
-                                             "foliage", "overlap-uv", "stiff", "lod-bounce", "courtyard", "characters",
-                                             "night-street", "atrium"}));
+                                             "foliage", "overlap-uv", "stiff", "lod-bounce", "courtyard", "night-street", "atrium",
+                                             "characters"}));
   EXPECT_TRUE(is_builtin_scene("chess"));
   EXPECT_FALSE(is_builtin_scene("Chess"));
   try {

@@ -15,8 +15,8 @@ Scene make_overlap_uv();
 Scene make_stiff();
 Scene make_lod_bounce();
 Scene make_courtyard();  // textures, alpha-masked leaves, punctual lights and a sky map
-Scene make_characters();  // a skinned flag and a morphing blob in a lit room
 Scene make_night_street();  // a street at night: 64 punctual lights, hundreds of lit windows
 Scene make_atrium();  // a closed room lit by a sun and a sky through its openings
+Scene make_characters();  // a skinned flag and a morphing blob in a lit room
 
 }  // namespace strata::scene::builtin

@@ -91,9 +91,9 @@ EnvironmentMap night_sky() {
 struct Panes {
   std::map<uint32_t, Primitive> by_material;
   void add(const glm::vec3& center, const glm::vec3& normal, float w, float h, uint32_t material) {
-    Primitive& panes = by_material[material];
-    panes.material = material;
-    append(panes, facing_quad(center, normal, w, h, material));
+    Primitive& group = by_material[material];
+    group.material = material;
+    append(group, facing_quad(center, normal, w, h, material));
   }
 };
 
@@ -105,8 +105,9 @@ struct Palette {
   uint32_t billboard;
 };
 
-// A facade's windows: columns `spacing` apart from `first` along `along`, floors 3 m apart from
-// 5 m up while a window fits 0.8 m under the top; 85% lit. `skip` leaves out a region (x, y).
+// A facade's windows (0.9 m x 1.6 m, 2 cm out along `normal`): `columns` columns 1.3 m apart from
+// `first` along `along`, floors 3 m apart from 5 m up while a window fits 0.8 m under the top `height`;
+// 85% lit, the rest dark glass. `skip(center)` leaves a window out.
 template <typename Skip>
 void windows(Panes& panes, const Palette& p, Pcg32& rng, glm::vec3 first, glm::vec3 along, glm::vec3 normal,
              uint32_t columns, float height, Skip skip) {
