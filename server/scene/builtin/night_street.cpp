@@ -230,6 +230,7 @@ Scene make_night_street() {
   FixtureMaterials fixtures{};
   fixtures.metal = b.material("dark metal", {0.12f, 0.12f, 0.13f}, 1.0f, 0.5f);
   fixtures.tyre = b.matte("tyre", {0.03f, 0.03f, 0.03f});
+  fixtures.frame = b.matte("lantern frame", {0.02f, 0.02f, 0.02f});
   fixtures.glass = p.glass;
   fixtures.paint[0] = b.material("red paint", {0.55f, 0.04f, 0.03f}, 0.0f, 0.3f);
   fixtures.paint[1] = b.material("blue paint", {0.05f, 0.12f, 0.45f}, 0.0f, 0.3f);

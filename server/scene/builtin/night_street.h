@@ -19,7 +19,8 @@ inline constexpr float kFarFacadeZ = -64.0f;                       // ... closed
 
 // Materials of the fixtures and the cars the lights come with.
 struct FixtureMaterials {
-  uint32_t metal;      // lamp posts, lantern frames, brackets
+  uint32_t metal;      // lamp posts, brackets
+  uint32_t frame;      // lantern frames: black and rough, so that the bulb 10 cm away leaves no bright spot on them
   uint32_t tyre;       // wheels
   uint32_t glass;      // car windows
   uint32_t paint[2];   // one per car

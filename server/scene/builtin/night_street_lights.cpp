@@ -67,10 +67,10 @@ void add_shop_lights(SceneBuilder& b, Pcg32& rng) {
 
 // Lanterns: a bracket on the facade holds a pivot 0.6 m out; the lantern (rod, cap, the light,
 // a base) hangs 0.55 m below it and swings about the street's cross axis.
-void add_lanterns(SceneBuilder& b, uint32_t metal, Pcg32& rng) {
-  Primitive lantern = transformed(box({0.01f, 0.2f, 0.01f}, metal), at({0.0f, -0.2f, 0.0f}));
-  append(lantern, transformed(box({0.12f, 0.03f, 0.12f}, metal), at({0.0f, -0.43f, 0.0f})));
-  append(lantern, transformed(box({0.1f, 0.02f, 0.1f}, metal), at({0.0f, -0.68f, 0.0f})));
+void add_lanterns(SceneBuilder& b, uint32_t metal, uint32_t frame, Pcg32& rng) {
+  Primitive lantern = transformed(box({0.01f, 0.2f, 0.01f}, frame), at({0.0f, -0.2f, 0.0f}));
+  append(lantern, transformed(box({0.12f, 0.03f, 0.12f}, frame), at({0.0f, -0.43f, 0.0f})));
+  append(lantern, transformed(box({0.1f, 0.02f, 0.1f}, frame), at({0.0f, -0.68f, 0.0f})));
   const uint32_t mesh = b.mesh("lantern", {lantern});
   Primitive brackets;
   brackets.material = metal;
@@ -115,7 +115,10 @@ uint32_t car_mesh(SceneBuilder& b, const std::string& name, uint32_t paint, cons
 }
 
 // A car moving along z at `speed` (m/s, negative: away from the camera) in the lane at `x`, and its
-// four lights placed on it every frame: headlights (spots, cones 10 and 22 degrees) and tail lights.
+// four lights placed on it every frame: headlights (spots, cones 10 and 22 degrees) and tail lights
+// (spots shining backwards over a half-space, 6 cm behind the body, which they leave unlit: a point
+// light there would make a bright spot on the paint, a source of fireflies for every path that
+// bounces off it).
 void add_car(SceneBuilder& b, const std::string& name, uint32_t mesh, float x, float z0, float speed) {
   const glm::quat heading = speed < 0.0f ? glm::quat(1, 0, 0, 0) : glm::angleAxis(kPi, glm::vec3(0, 1, 0));
   auto place = [=](uint32_t f) {
@@ -138,8 +141,8 @@ void add_car(SceneBuilder& b, const std::string& name, uint32_t mesh, float x, f
     const std::string light_name = name + " " + lamp.name;
     const uint32_t light =
         lamp.head ? b.light(spot(light_name, {1.0f, 0.95f, 0.85f}, 120.0f, glm::vec3(0.0f), {0, 0, -1}, 10.0f, 22.0f))
-                  : b.light(light_at(light_name, LightType::kPoint, {1.0f, 0.05f, 0.02f}, 0.8f, glm::vec3(0.0f), {0, 0, -1}));
-    const glm::quat aim = lamp.head ? look_at(glm::vec3(0.0f), {0.0f, -0.12f, -1.0f}) : glm::quat(1, 0, 0, 0);
+                  : b.light(spot(light_name, {1.0f, 0.05f, 0.02f}, 0.8f, glm::vec3(0.0f), {0, 0, -1}, 60.0f, 85.0f));
+    const glm::quat aim = look_at(glm::vec3(0.0f), lamp.head ? glm::vec3(0.0f, -0.12f, -1.0f) : glm::vec3(0.0f, 0.0f, 1.0f));
     b.light_track(light, [&](uint32_t f) {
       TransformKey key = place(f);
       key.translation += key.rotation * lamp.offset;
@@ -170,7 +173,7 @@ void add_lights(SceneBuilder& b, const FixtureMaterials& m) {
   Pcg32 rng(0x11647u);
   add_street_lamps(b, m.metal, rng);
   add_shop_lights(b, rng);
-  add_lanterns(b, m.metal, rng);
+  add_lanterns(b, m.metal, m.frame, rng);
   add_car(b, "car away", car_mesh(b, "car red", m.paint[0], m), 2.0f, 4.0f, -10.0f);
   add_car(b, "car towards", car_mesh(b, "car blue", m.paint[1], m), -2.0f, -50.0f, 11.0f);
   add_far_lights(b);
