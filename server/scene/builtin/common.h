@@ -71,8 +71,22 @@ class SceneBuilder {
   Scene finish();  // sorts the LoD schedule by time and tracks by instance
 
  private:
+  // `motion(frame)` for every frame, each key at its frame's time.
+  template <typename Motion>
+  static std::vector<TransformKey> keys_of(Motion motion);
   Scene scene_;
 };
+
+template <typename Motion>
+std::vector<TransformKey> SceneBuilder::keys_of(Motion motion) {
+  std::vector<TransformKey> keys;
+  for (uint32_t f = 0; f < kFrameCount; ++f) {
+    TransformKey key = motion(f);
+    key.time = key_time(f);
+    keys.push_back(key);
+  }
+  return keys;
+}
 
 template <typename Path>
 void SceneBuilder::camera_path(Path path) {
@@ -87,24 +101,14 @@ void SceneBuilder::camera_path(Path path) {
 
 template <typename Motion>
 void SceneBuilder::track(uint32_t instance, Motion motion) {
-  InstanceTrack track{instance, {}};
-  for (uint32_t f = 0; f < kFrameCount; ++f) {
-    TransformKey key = motion(f);
-    key.time = key_time(f);
-    track.keys.push_back(key);
-  }
+  InstanceTrack track{instance, keys_of(motion)};
   scene_.instances[instance].transform = compose_key(track.keys.front());
   scene_.animation.tracks.push_back(std::move(track));
 }
 
 template <typename Motion>
 void SceneBuilder::light_track(uint32_t light, Motion motion) {
-  LightTrack track{light, {}};
-  for (uint32_t f = 0; f < kFrameCount; ++f) {
-    TransformKey key = motion(f);
-    key.time = key_time(f);
-    track.keys.push_back(key);
-  }
+  LightTrack track{light, keys_of(motion)};
   scene_.lights[light].transform = compose_key(track.keys.front());
   scene_.animation.light_tracks.push_back(std::move(track));
 }
