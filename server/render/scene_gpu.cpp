@@ -246,23 +246,26 @@ glm::dvec3 GpuScene::record_update(VkCommandBuffer cmd, const scene::FrameState&
   prev_total_power_ = frames_ > 0 ? total_power_ : table.total_power;
   emitter_count_ = uint32_t(table.emitters.size());
   total_power_ = table.total_power;
-  // Light selection: which emitter triangle each column of the alias table picks, and with which
-  // probability. Where it differs, the same random numbers choose other lights in the two frames.
-  // Probabilities are compared to 1e-5: a turning emitter's float area wobbles in the last bits,
-  // which moves the alias thresholds by as much (a choice changes for a 1e-5 share of the numbers).
-  LightSelection selection;
-  for (const auto& e : table.emitters) {
-    selection.probabilities.push_back(e.p1_pmf.w);
-    for (int k = 0; k < 4; ++k) selection.choices.push_back(e.surface[k]);
+  if (light_tree_) {
+    record_light_tree(table);
+  } else {
+    // Light selection: which emitter triangle each column of the alias table picks, and with which
+    // probability. Where it differs, the same random numbers choose other lights in the two frames.
+    // Probabilities are compared to 1e-5: a turning emitter's float area wobbles in the last bits,
+    // which moves the alias thresholds by as much (a choice changes for a 1e-5 share of the numbers).
+    LightSelection selection;
+    for (const auto& e : table.emitters) {
+      selection.probabilities.push_back(e.p1_pmf.w);
+      for (int k = 0; k < 4; ++k) selection.choices.push_back(e.surface[k]);
+    }
+    for (const auto& l : table.lights) selection.probabilities.push_back(l.intensity_pmf.w);
+    for (const auto& a : table.alias) {
+      selection.probabilities.push_back(a.threshold);
+      selection.choices.push_back(a.alias);
+    }
+    lights_reselected_ = frames_ > 0 && !selection.same_as(light_selection_);
+    light_selection_ = std::move(selection);
   }
-  for (const auto& l : table.lights) selection.probabilities.push_back(l.intensity_pmf.w);
-  for (const auto& a : table.alias) {
-    selection.probabilities.push_back(a.threshold);
-    selection.choices.push_back(a.alias);
-  }
-  lights_reselected_ = frames_ > 0 && !selection.same_as(light_selection_);
-  light_selection_ = std::move(selection);
-  if (light_tree_) record_light_tree(table);
   ++frames_;
   if (emitter_count_ > emitter_capacity_) throw gpu::GpuError("emitter table overflow");
   emitters_.upload(table.emitters.data(), table.emitters.size() * sizeof(gpu::GpuEmitter));
@@ -323,8 +326,8 @@ void GpuScene::record_light_tree(const EmitterTable& table) {
   for (const auto& e : table.emitters) entries.insert(entries.end(), {e.surface.x, e.surface.y, e.surface.z});
   const bool relisted = frames_ > 0 && entries != light_entries_;
   light_entries_ = std::move(entries);
-  bool emitter_changed = false;
-  for (size_t i = 0; i < changes_.size(); ++i) emitter_changed = emitter_changed || (instance_emits_[i] && changes_[i] != 0);
+  const bool emitter_changed =
+      std::ranges::any_of(changes_, [](uint32_t c) { return (c & gpu::INSTANCE_CHANGED_EMISSION) != 0u; });
   lights_reselected_ = relisted;
   lights_changed_ = frames_ > 0 && (relisted || lights_moved_ || emitter_changed);
 }
