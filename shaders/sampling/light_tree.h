@@ -21,17 +21,11 @@ CONST_DEF float LIGHT_TREE_MIN_COS = 1e-3f;
 // The importance of a node at shading point x (Conty Estevez & Kulla 2018, Eq. 3, without the
 // receiver's own cosine): its power over the squared distance to its bounds' centre (no less than
 // the bounds' squared radius, so x inside or beside them sees them all as near), times the cosine
-// of theta' = max(0, theta_w - theta_o), where theta_w is the least angle between the cone's axis and
-// a direction from a point of the bounds to x and theta_o the cone's spread, and 0 where theta' is
-// past theta_e: no light below emits towards x. Positive wherever some light below can reach x,
-// which is what keeps the estimator unbiased. theta_w is bounded from below two ways and the
-// tighter kept: by the bounding sphere (the centre's angle less the half angle theta_b the sphere
-// subtends, as the paper does), and by the box itself (the largest axis component of x - y over the
-// box, a linear function, over the least distance from x to the box). The sphere is loose for long
-// flat boxes seen from the side (a row of high masts aimed down, 40 m wide, seen from 60 m: the
-// sphere allows 62 degrees from the axis, the box 80, past their cones' 65, so the node is culled
-// where its children are). The angle differences by their cosines and sines (cos(a - b) = cos a
-// cos b + sin a sin b), no inverse trigonometry.
+// of theta' = max(0, theta_w - theta_o - theta_b), the least angle between an emitter normal of the
+// cone and the direction to x that the bounds allow (theta_w: axis to x; theta_b: half the angle
+// the bounds subtend), and 0 where theta' is past theta_e: no light below emits towards x. Positive
+// wherever some light below can reach x, which is what keeps the estimator unbiased. The angle
+// differences by their cosines and sines (cos(a - b) = cos a cos b + sin a sin b), no inverse trigonometry.
 INLINE float light_node_importance(GpuLightNode n, vec3 x) {
   float power = n.lo_power.w;
   if (!(power > 0.0f)) return 0.0f;
@@ -44,27 +38,18 @@ INLINE float light_node_importance(GpuLightNode n, vec3 x) {
   float dist2 = max(max(d2, r2), 1e-20f);
   if (d2 <= r2) return power / dist2;  // x within the bounding sphere: every orientation can face it
   vec3 axis = vec3(n.axis_cos_e.x, n.axis_cos_e.y, n.axis_cos_e.z);
-  bool two_sided = (n.links.y & LIGHT_NODE_TWO_SIDED) != 0u;
-  // theta_w by the sphere: the centre's angle less theta_b, sin^2 theta_b = r^2 / d^2
-  float cos_c = clamp(dot(axis, d) / sqrt(d2), -1.0f, 1.0f);
-  if (two_sided) cos_c = abs(cos_c);
-  float sin_c = sqrt(max(0.0f, 1.0f - cos_c * cos_c));
+  float cos_w = clamp(dot(axis, d) / sqrt(d2), -1.0f, 1.0f);
+  if ((n.links.y & LIGHT_NODE_TWO_SIDED) != 0u) cos_w = abs(cos_w);
+  float sin_w = sqrt(max(0.0f, 1.0f - cos_w * cos_w));
+  // theta_x = max(0, theta_w - theta_o)
+  float cos_o = n.hi_cos_o.w, sin_o = uintBitsToFloat(n.links.z);
+  bool inside_o = cos_w >= cos_o;
+  float cos_x = inside_o ? 1.0f : cos_w * cos_o + sin_w * sin_o;
+  float sin_x = inside_o ? 0.0f : sin_w * cos_o - cos_w * sin_o;
+  // theta' = max(0, theta_x - theta_b), sin^2 theta_b = r^2 / d^2
   float sin_b2 = r2 / d2;
   float cos_b = sqrt(max(0.0f, 1.0f - sin_b2));
-  float cos_w = cos_c >= cos_b ? 1.0f : cos_c * cos_b + sin_c * sqrt(sin_b2);
-  // theta_w by the box: dot(axis, x - y) <= top over the box, |x - y| between near and far
-  float spread = dot(abs(axis), half_extent);
-  float top = dot(axis, d) + spread;
-  if (two_sided) top = max(top, spread - dot(axis, d));
-  vec3 gap = max(abs(d) - half_extent, vec3(0.0f));
-  vec3 reach = abs(d) + half_extent;
-  float near2 = dot(gap, gap);
-  float cos_box = top >= 0.0f ? (near2 > 0.0f ? min(top / sqrt(near2), 1.0f) : 1.0f) : top / sqrt(dot(reach, reach));
-  cos_w = min(cos_w, cos_box);
-  float sin_w = sqrt(max(0.0f, 1.0f - cos_w * cos_w));
-  // theta' = max(0, theta_w - theta_o)
-  float cos_o = n.hi_cos_o.w, sin_o = uintBitsToFloat(n.links.z);
-  float cos_p = cos_w >= cos_o ? 1.0f : cos_w * cos_o + sin_w * sin_o;
+  float cos_p = cos_x >= cos_b ? 1.0f : cos_x * cos_b + sin_x * sqrt(sin_b2);
   if (cos_p <= n.axis_cos_e.w - LIGHT_TREE_COS_SLACK) return 0.0f;
   return power * max(cos_p, LIGHT_TREE_MIN_COS) / dist2;
 }

@@ -154,34 +154,6 @@ TEST(LightTree, ChoosesNearLightsMoreOftenThanPowerDoes) {
   EXPECT_LT(render::light_tree_pmf(tree, glm::vec3(0.0f, 2.0f, 0.0f), 63), 1.0f / 640.0f);
 }
 
-TEST(LightTree, CullsARowOfSpotsThatNoneOfReaches) {
-  // Eight spots 12 m up in a 42 m row, aimed down with 65-degree cones, and one point light near a
-  // point 67 m from the row at ground level, outside every cone. The row's node must be culled
-  // there as its leaves are: its bounding sphere (radius 21 m) allows directions 62 degrees from
-  // the axis, the box 80; a node kept where no leaf below it is sends choices to nothing.
-  render::EmitterTable table;
-  std::vector<scene::Light> lights;
-  auto add = [&](glm::vec3 p, bool spot) {
-    scene::Light l;
-    l.type = spot ? scene::LightType::kSpot : scene::LightType::kPoint;
-    l.outer_cone = glm::radians(65.0f);
-    lights.push_back(l);
-    gpu::GpuPunctualLight r{};
-    r.position_range = glm::vec4(p, 0.0f);
-    r.direction_type = glm::vec4(0.0f, -1.0f, 0.0f, float(spot ? gpu::PUNCTUAL_SPOT : gpu::PUNCTUAL_POINT));
-    table.lights.push_back(r);
-    table.power.push_back(spot ? 200.0 : 4.0);
-  };
-  for (int k = 0; k < 8; ++k) add({-21.0f + 6.0f * float(k), 12.0f, -60.0f}, true);
-  add({0.0f, 3.0f, 5.0f}, false);
-  const render::LightTree tree = render::build_light_tree(table, lights, 0);
-  const glm::vec3 x(0.0f, 0.0f, 7.0f);
-  for (uint32_t k = 0; k < 8; ++k) EXPECT_EQ(render::light_tree_pmf(tree, x, k), 0.0f) << "spot " << k;
-  EXPECT_FLOAT_EQ(render::light_tree_pmf(tree, x, 8), 1.0f);
-  // Under the row the spots are chosen again.
-  EXPECT_GT(render::light_tree_pmf(tree, glm::vec3(0.0f, 0.0f, -60.0f), 3), 0.0f);
-}
-
 TEST(LightTree, FindsEachEmittersEntryAndKeepsItsBounds) {
   const ManyLights m = many_lights(600, 64);
   const render::LightTree tree = render::build_light_tree(m.table, m.lights, 16);
