@@ -54,6 +54,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
   vec3 throughput = vec3(1.0);
   float prev_bsdf_pdf = 0.0;  // 0 marks the camera vertex: emission seen directly is not MIS-weighted
   vec3 prev_position = vec3(0.0);  // the surface point the ray left, where its NEE sampled lights
+  vec3 prev_normal = vec3(0.0);    // its geometric normal on the side NEE took
   g_rays_primary++;
 
   for (uint depth = 1u; depth <= u_frame.max_depth; ++depth) {
@@ -75,7 +76,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     if (any(greaterThan(emission, vec3(0.0))) && (front || double_sided)) {
       float w = 1.0;
       if (k_emitters && prev_bsdf_pdf > 0.0) {
-        float light_pdf = emitter_light_pdf(false, prev_position, uvec3(rh.instance, rh.geometry, rh.triangle), m.light_emission,
+        float light_pdf = emitter_light_pdf(false, prev_position, prev_normal, uvec3(rh.instance, rh.geometry, rh.triangle), m.light_emission,
                                             s.area, double_sided, rh.t, cos_hit);
         w = mis_power(prev_bsdf_pdf, light_pdf);
       }
@@ -97,7 +98,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     if (k_emitters || k_env_nee || k_punctual) {
       LightSample ls;
       vec3 ul = vec3(rng_next_float2(rng), rng_next_float(rng));
-      if (sample_light(s.position, ul, ls) && dot(ls.direction, ng) > 0.0) {
+      if (sample_light(s.position, ng, ul, ls) && dot(ls.direction, ng) > 0.0) {
         vec3 wi = to_local(ls.direction, t, b, ns);
         vec3 f = bsdf_eval_cos(bsdf, wo, wi);
         if (any(greaterThan(f, vec3(0.0)))) {
@@ -123,6 +124,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     throughput *= weight;
     prev_bsdf_pdf = pdf;
     prev_position = s.position;
+    prev_normal = ng;
     origin = x;
 
     if (float(depth) >= RR_START_DEPTH) {

@@ -140,7 +140,7 @@ vec3 spawn(Vertex v) { return offset_ray_origin(v.position, v.ng); }
 // sampling, `dist` away, in either frame (the scene bridge's, sanitized like every weight;
 // light_pdf_environment is the bridge's).
 float light_pdf_emitter(bool prev, Vertex v, Vertex w, float dist) {
-  return gris_sanitize(emitter_light_pdf(prev, v.position, uvec3(w.point.instance, w.point.geometry, w.point.triangle), w.material_emission, w.area, w.double_sided, dist, w.cos_in));
+  return gris_sanitize(emitter_light_pdf(prev, v.position, v.ng, uvec3(w.point.instance, w.point.geometry, w.point.triangle), w.material_emission, w.area, w.double_sided, dist, w.cos_in));
 }
 
 // The MIS weight of the technique that produced the path's last vertex, power heuristic with the

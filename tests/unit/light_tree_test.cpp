@@ -57,6 +57,14 @@ ManyLights many_lights(uint32_t emitters, uint32_t punctual) {
 
 uint32_t entries(const render::EmitterTable& t) { return uint32_t(t.emitters.size() + t.lights.size()); }
 
+glm::vec3 random_direction(scene::builtin::Pcg32& rng) {
+  for (;;) {
+    const glm::vec3 v(rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f));
+    const float l2 = glm::dot(v, v);
+    if (l2 > 1e-4f && l2 <= 1.0f) return v / std::sqrt(l2);
+  }
+}
+
 TEST(LightTree, ProbabilitiesSumToOneAndAreThoseOfTheChoice) {
   const ManyLights m = many_lights(600, 64);
   const render::LightTree tree = render::build_light_tree(m.table, m.lights, 16);
@@ -64,40 +72,50 @@ TEST(LightTree, ProbabilitiesSumToOneAndAreThoseOfTheChoice) {
   scene::builtin::Pcg32 rng(7u);
   for (int k = 0; k < 40; ++k) {
     const glm::vec3 x(rng.uniform(-12.0f, 12.0f), rng.uniform(-12.0f, 12.0f), rng.uniform(-12.0f, 12.0f));
+    const glm::vec3 n = k % 4 == 0 ? glm::vec3(0.0f) : random_direction(rng);  // every fourth without a surface
     // At most one: a node may reach x where none of its children does (its bounds and cone are
-    // looser than theirs), and a choice that descends there finds no light (a wasted sample, not bias).
+    // looser than theirs, and on a surface its box may cross the surface's plane where theirs lie
+    // behind it), and a choice that descends there finds no light (a wasted sample, not bias).
     double sum = 0.0;
-    for (uint32_t e = 0; e < entries(m.table); ++e) sum += render::light_tree_pmf(tree, x, e);
+    for (uint32_t e = 0; e < entries(m.table); ++e) sum += render::light_tree_pmf(tree, x, n, e);
     EXPECT_LE(sum, 1.0 + 1e-4) << "x " << x.x << " " << x.y << " " << x.z;
-    EXPECT_GT(sum, 0.9) << "x " << x.x << " " << x.y << " " << x.z;
+    EXPECT_GT(sum, k % 4 == 0 ? 0.9 : 0.3) << "x " << x.x << " " << x.y << " " << x.z;
     for (int j = 0; j < 64; ++j) {
       uint32_t e;
       float pmf;
-      if (!render::light_tree_choose(tree, x, rng.uniform(0.0f, 1.0f), e, pmf)) continue;
-      EXPECT_EQ(pmf, render::light_tree_pmf(tree, x, e));  // the same products, bit for bit
+      if (!render::light_tree_choose(tree, x, n, rng.uniform(0.0f, 1.0f), e, pmf)) continue;
+      EXPECT_EQ(pmf, render::light_tree_pmf(tree, x, n, e));  // the same products, bit for bit
     }
   }
 }
 
 TEST(LightTree, EveryLightThatReachesThePointHasAPositiveProbability) {
+  // At x on a surface of normal n (the receiver's factor) and at x without one: a light that faces x
+  // and lies, at least in part, in front of the surface must keep a positive probability, else
+  // next-event estimation would never sample light that the surface scatters (bias).
   const ManyLights m = many_lights(600, 64);
   const render::LightTree tree = render::build_light_tree(m.table, m.lights, 16);
   scene::builtin::Pcg32 rng(11u);
-  int reaching = 0, culled = 0;  // emitters facing x; of the others, those the cones rule out
+  int reaching = 0, culled = 0, behind = 0;  // emitters facing x; of the others, those the bounds rule out
   for (int k = 0; k < 40; ++k) {
     const glm::vec3 x(rng.uniform(-12.0f, 12.0f), rng.uniform(-12.0f, 12.0f), rng.uniform(-12.0f, 12.0f));
+    const glm::vec3 n = k % 2 == 0 ? glm::vec3(0.0f) : random_direction(rng);
+    const bool surface = k % 2 != 0;
     for (uint32_t e = 0; e < m.table.emitters.size(); ++e) {
       const auto& t = m.table.emitters[e];
       const glm::vec3 p0(t.p0_area), p1(t.p1_pmf), p2(t.p2_flags);
-      const glm::vec3 n = glm::cross(p1 - p0, p2 - p0);
+      const glm::vec3 c = glm::cross(p1 - p0, p2 - p0);
       uint32_t flags;
       std::memcpy(&flags, &t.p2_flags.w, sizeof flags);
-      const float facing = glm::dot(n, x - p0);  // the plane's side x is on: the whole triangle faces it or not
-      if (facing > 0.0f || (flags & gpu::MATERIAL_DOUBLE_SIDED) != 0u) {
+      const float facing = glm::dot(c, x - p0);  // the plane's side x is on: the whole triangle faces it or not
+      const bool in_front = !surface || glm::dot(n, p0 - x) > 0.0f || glm::dot(n, p1 - x) > 0.0f || glm::dot(n, p2 - x) > 0.0f;
+      const float pmf = render::light_tree_pmf(tree, x, n, e);
+      if ((facing > 0.0f || (flags & gpu::MATERIAL_DOUBLE_SIDED) != 0u) && in_front) {
         ++reaching;
-        EXPECT_GT(render::light_tree_pmf(tree, x, e), 0.0f) << "emitter " << e;
-      } else if (render::light_tree_pmf(tree, x, e) == 0.0f) {
+        EXPECT_GT(pmf, 0.0f) << "emitter " << e;
+      } else if (pmf == 0.0f) {
         ++culled;
+        if (!in_front) ++behind;
       }
     }
     for (uint32_t l = 0; l + 2 < m.lights.size(); ++l) {
@@ -105,13 +123,18 @@ TEST(LightTree, EveryLightThatReachesThePointHasAPositiveProbability) {
       const glm::vec3 to_x = glm::normalize(x - glm::vec3(r.position_range));
       const bool lit = m.lights[l].type == scene::LightType::kPoint ||
                        glm::dot(to_x, glm::vec3(r.direction_type)) > std::cos(m.lights[l].outer_cone);
-      if (lit) {
-        EXPECT_GT(render::light_tree_pmf(tree, x, uint32_t(m.table.emitters.size()) + l), 0.0f) << "light " << l;
+      const bool in_front = !surface || glm::dot(n, -to_x) > 0.0f;
+      const float pmf = render::light_tree_pmf(tree, x, n, uint32_t(m.table.emitters.size()) + l);
+      if (lit && in_front) {
+        EXPECT_GT(pmf, 0.0f) << "light " << l;
+      } else if (!in_front) {
+        EXPECT_EQ(pmf, 0.0f) << "light " << l << " behind the surface";
       }
     }
   }
-  EXPECT_GT(reaching, 10000);
+  EXPECT_GT(reaching, 5000);
   EXPECT_GT(culled, 2000);  // the orientation bounds do rule lights out
+  EXPECT_GT(behind, 2000);  // and so does the receiver's factor
 }
 
 TEST(LightTree, StratifiedChoicesLandAsOftenAsTheProbabilitySays) {
@@ -124,15 +147,15 @@ TEST(LightTree, StratifiedChoicesLandAsOftenAsTheProbabilitySays) {
   for (uint32_t i = 0; i < n; ++i) {
     uint32_t e;
     float pmf;
-    if (render::light_tree_choose(tree, x, (float(i) + 0.5f) / float(n), e, pmf)) ++count.at(e);
+    if (render::light_tree_choose(tree, x, glm::vec3(0.0f), (float(i) + 0.5f) / float(n), e, pmf)) ++count.at(e);
     else ++missed;
   }
   double sum = 0.0;
   // Each leaf owns an interval of u as long as its probability (to float rounding of the rescaled u
   // over about 20 levels): stratified counts are n pmf to within a few strata.
   for (uint32_t e = 0; e < entries(m.table); ++e) {
-    sum += render::light_tree_pmf(tree, x, e);
-    EXPECT_NEAR(double(count[e]), double(n) * render::light_tree_pmf(tree, x, e), 4.0) << "entry " << e;
+    sum += render::light_tree_pmf(tree, x, glm::vec3(0.0f), e);
+    EXPECT_NEAR(double(count[e]), double(n) * render::light_tree_pmf(tree, x, glm::vec3(0.0f), e), 4.0) << "entry " << e;
   }
   EXPECT_NEAR(double(missed), double(n) * (1.0 - sum), 8.0);
 }
@@ -150,8 +173,8 @@ TEST(LightTree, ChoosesNearLightsMoreOftenThanPowerDoes) {
     table.power.push_back(1.0);
   }
   const render::LightTree tree = render::build_light_tree(table, lights, 0);
-  EXPECT_GT(render::light_tree_pmf(tree, glm::vec3(0.0f, 2.0f, 0.0f), 0), 0.25f);
-  EXPECT_LT(render::light_tree_pmf(tree, glm::vec3(0.0f, 2.0f, 0.0f), 63), 1.0f / 640.0f);
+  EXPECT_GT(render::light_tree_pmf(tree, glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), 0), 0.25f);
+  EXPECT_LT(render::light_tree_pmf(tree, glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), 63), 1.0f / 640.0f);
 }
 
 TEST(LightTree, FindsEachEmittersEntryAndKeepsItsBounds) {
