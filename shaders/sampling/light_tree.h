@@ -18,23 +18,23 @@ STRATA_NAMESPACE_BEGIN
 CONST_DEF float LIGHT_TREE_COS_SLACK = 1e-3f;
 CONST_DEF float LIGHT_TREE_MIN_COS = 1e-3f;
 
-// The receiver's factor of a node's importance at x (Conty Estevez & Kulla 2018, Eq. 3's
-// cos theta_i): with the normal `nrm` of the surface at x (the geometric normal on the side the
-// path arrives from; vec3(0): no surface), a bound on the cosine between nrm and a direction from x
-// into the node's box, the largest nrm component of y - x over the box (a linear function) over
-// the least distance from x to the box. 0 where the whole box lies behind the surface, where every
-// method's scattering is 0 (reflection only: scatter() and path_trace.comp test the geometric
-// normal); float rounding of the bound never culls, by LIGHT_TREE_COS_SLACK.
-INLINE float light_node_receiver(vec3 lo, vec3 hi, vec3 x, vec3 nrm) {
-  if (!(dot(nrm, nrm) > 0.0f)) return 1.0f;
+// Whether a node's box [lo, hi] lies wholly behind the surface at x of normal `nrm` (the geometric
+// normal on the side the path arrives from; vec3(0): no surface), where every method's scattering
+// is 0 (reflection only: scatter() and path_trace.comp test the geometric normal): the largest nrm
+// component of y - x over the box, a linear function, is negative, by more than float rounding
+// (LIGHT_TREE_COS_SLACK). Conty Estevez & Kulla 2018 weigh a node by a bound of the receiver's
+// cosine too, which fits a diffuse surface's integrand; on glossy glass seen at a grazing angle a
+// point light's highlight comes from a light near the surface's plane, where f cos theta_i does not
+// fall with the cosine, and that weight made such highlights rare picks of huge value
+// (docs/BENCHMARKS.md, "Many lights").
+INLINE bool light_node_behind(vec3 lo, vec3 hi, vec3 x, vec3 nrm) {
+  if (!(dot(nrm, nrm) > 0.0f)) return false;
   vec3 half_extent = 0.5f * (hi - lo);
   vec3 to_centre = lo + half_extent - x;
   float top = dot(nrm, to_centre) + dot(abs(nrm), half_extent);
-  vec3 gap = max(abs(to_centre) - half_extent, vec3(0.0f));
-  float near2 = dot(gap, gap);
-  if (top >= 0.0f) return near2 > 0.0f ? clamp(top / sqrt(near2), LIGHT_TREE_MIN_COS, 1.0f) : 1.0f;
+  if (top >= 0.0f) return false;
   vec3 reach = abs(to_centre) + half_extent;
-  return top / sqrt(dot(reach, reach)) <= -LIGHT_TREE_COS_SLACK ? 0.0f : LIGHT_TREE_MIN_COS;
+  return top / sqrt(dot(reach, reach)) <= -LIGHT_TREE_COS_SLACK;
 }
 
 // The importance of a node at shading point x with surface normal nrm (Conty Estevez & Kulla 2018,
@@ -42,23 +42,22 @@ INLINE float light_node_receiver(vec3 lo, vec3 hi, vec3 x, vec3 nrm) {
 // squared radius, so x inside or beside them sees them all as near), times the cosine of
 // theta' = max(0, theta_w - theta_o - theta_b), the least angle between an emitter normal of the
 // cone and the direction to x that the bounds allow (theta_w: axis to x; theta_b: half the angle
-// the bounds subtend), and 0 where theta' is past theta_e: no light below emits towards x; times
-// the receiver's factor (light_node_receiver). Positive wherever some light below can reach x and
-// be scattered there, which is what keeps the estimator unbiased. The angle differences by their
+// the bounds subtend), and 0 where theta' is past theta_e (no light below emits towards x) or where
+// all of them lie behind the surface at x (light_node_behind). Positive wherever some light below
+// can reach x and be scattered there, which is what keeps the estimator unbiased. The angle differences by their
 // cosines and sines (cos(a - b) = cos a cos b + sin a sin b), no inverse trigonometry.
 INLINE float light_node_importance(GpuLightNode n, vec3 x, vec3 nrm) {
   float power = n.lo_power.w;
   if (!(power > 0.0f)) return 0.0f;
   vec3 lo = vec3(n.lo_power.x, n.lo_power.y, n.lo_power.z);
   vec3 hi = vec3(n.hi_cos_o.x, n.hi_cos_o.y, n.hi_cos_o.z);
-  float receiver = light_node_receiver(lo, hi, x, nrm);
-  if (!(receiver > 0.0f)) return 0.0f;
+  if (light_node_behind(lo, hi, x, nrm)) return 0.0f;
   vec3 half_extent = 0.5f * (hi - lo);
   vec3 d = x - (lo + half_extent);
   float r2 = dot(half_extent, half_extent);
   float d2 = dot(d, d);
   float dist2 = max(max(d2, r2), 1e-20f);
-  if (d2 <= r2) return power * receiver / dist2;  // x within the bounding sphere: every orientation can face it
+  if (d2 <= r2) return power / dist2;  // x within the bounding sphere: every orientation can face it
   vec3 axis = vec3(n.axis_cos_e.x, n.axis_cos_e.y, n.axis_cos_e.z);
   float cos_w = clamp(dot(axis, d) / sqrt(d2), -1.0f, 1.0f);
   if ((n.links.y & LIGHT_NODE_TWO_SIDED) != 0u) cos_w = abs(cos_w);
@@ -73,7 +72,7 @@ INLINE float light_node_importance(GpuLightNode n, vec3 x, vec3 nrm) {
   float cos_b = sqrt(max(0.0f, 1.0f - sin_b2));
   float cos_p = cos_x >= cos_b ? 1.0f : cos_x * cos_b + sin_x * sqrt(sin_b2);
   if (cos_p <= n.axis_cos_e.w - LIGHT_TREE_COS_SLACK) return 0.0f;
-  return power * max(cos_p, LIGHT_TREE_MIN_COS) * receiver / dist2;
+  return power * max(cos_p, LIGHT_TREE_MIN_COS) / dist2;
 }
 
 // The probabilities of interior node `node`'s first and second child at x: each one's importance

@@ -79,7 +79,7 @@ TEST(LightTree, ProbabilitiesSumToOneAndAreThoseOfTheChoice) {
     double sum = 0.0;
     for (uint32_t e = 0; e < entries(m.table); ++e) sum += render::light_tree_pmf(tree, x, n, e);
     EXPECT_LE(sum, 1.0 + 1e-4) << "x " << x.x << " " << x.y << " " << x.z;
-    EXPECT_GT(sum, k % 4 == 0 ? 0.9 : 0.3) << "x " << x.x << " " << x.y << " " << x.z;
+    EXPECT_GT(sum, k % 4 == 0 ? 0.9 : 0.25) << "x " << x.x << " " << x.y << " " << x.z;
     for (int j = 0; j < 64; ++j) {
       uint32_t e;
       float pmf;
@@ -90,7 +90,7 @@ TEST(LightTree, ProbabilitiesSumToOneAndAreThoseOfTheChoice) {
 }
 
 TEST(LightTree, EveryLightThatReachesThePointHasAPositiveProbability) {
-  // At x on a surface of normal n (the receiver's factor) and at x without one: a light that faces x
+  // At x on a surface of normal n (nodes behind it culled) and at x without one: a light that faces x
   // and lies, at least in part, in front of the surface must keep a positive probability, else
   // next-event estimation would never sample light that the surface scatters (bias).
   const ManyLights m = many_lights(600, 64);
@@ -134,7 +134,7 @@ TEST(LightTree, EveryLightThatReachesThePointHasAPositiveProbability) {
   }
   EXPECT_GT(reaching, 5000);
   EXPECT_GT(culled, 2000);  // the orientation bounds do rule lights out
-  EXPECT_GT(behind, 2000);  // and so does the receiver's factor
+  EXPECT_GT(behind, 2000);  // and so does the surface at x
 }
 
 TEST(LightTree, StratifiedChoicesLandAsOftenAsTheProbabilitySays) {
