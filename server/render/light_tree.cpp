@@ -295,12 +295,12 @@ std::vector<std::byte> LightTree::bytes() const {
 
 namespace strata::render {
 
-bool light_tree_choose(const LightTree& tree, glm::vec3 x, glm::vec3 n, float u, uint32_t& entry, float& pmf) {
-  return gpu::light_tree_choose(tree, x, n, u, entry, pmf);
+bool light_tree_choose(const LightTree& tree, glm::vec3 x, glm::vec4 receiver, float u, uint32_t& entry, float& pmf) {
+  return gpu::light_tree_choose(tree, x, receiver, u, entry, pmf);
 }
 
-float light_tree_pmf(const LightTree& tree, glm::vec3 x, glm::vec3 n, uint32_t entry) {
-  return gpu::light_tree_pmf(tree, x, n, entry);
+float light_tree_pmf(const LightTree& tree, glm::vec3 x, glm::vec4 receiver, uint32_t entry) {
+  return gpu::light_tree_pmf(tree, x, receiver, entry);
 }
 
 }  // namespace strata::render

@@ -41,8 +41,8 @@ struct LightTree {
 LightTree build_light_tree(const EmitterTable& table, std::span<const scene::Light> lights, uint32_t instance_count);
 
 // sampling/light_tree.h on the host (tests): the entry chosen by u at x with its probability, and
-// the probability of an entry; n the surface normal at x (vec3(0): none).
-bool light_tree_choose(const LightTree& tree, glm::vec3 x, glm::vec3 n, float u, uint32_t& entry, float& pmf);
-float light_tree_pmf(const LightTree& tree, glm::vec3 x, glm::vec3 n, uint32_t entry);
+// the probability of an entry; `receiver` the surface at x (sampling/light_tree.h, light_node_receiver).
+bool light_tree_choose(const LightTree& tree, glm::vec3 x, glm::vec4 receiver, float u, uint32_t& entry, float& pmf);
+float light_tree_pmf(const LightTree& tree, glm::vec3 x, glm::vec4 receiver, uint32_t entry);
 
 }  // namespace strata::render

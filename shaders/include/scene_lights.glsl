@@ -87,20 +87,20 @@ uint light_tree_entry(LightTreeRef t, uint instance, uint geometry, uint triangl
   return lo < g.x + g.y && tris.v[lo] == triangle ? lo : LIGHT_TREE_NONE;
 }
 
-// The probability that a tree's sampler picks table entry `entry` at x (surface normal n, or
-// vec3(0)), given that it does not pick the environment: a directional light's share among them,
-// else the tree's choice.
-float light_tree_select(LightTreeRef t, vec3 x, vec3 n, uint entry) {
+// The probability that a tree's sampler picks table entry `entry` at x (`receiver`: the surface
+// there, bsdf_light_receiver), given that it does not pick the environment: a directional light's share
+// among them, else the tree's choice.
+float light_tree_select(LightTreeRef t, vec3 x, vec4 receiver, uint entry) {
   if (entry == LIGHT_TREE_NONE) return 0.0;
   LightTreeUvec2s directional = LightTreeUvec2s(address_plus(t.base, t.h.directional_offset));
   for (uint i = 0u; i < t.h.directional_count; ++i)
     if (directional.v[i].x == entry) return t.h.directional_prob * uintBitsToFloat(directional.v[i].y);
-  return (1.0 - t.h.directional_prob) * light_tree_pmf(t, x, n, entry);
+  return (1.0 - t.h.directional_prob) * light_tree_pmf(t, x, receiver, entry);
 }
 
-// With the tree: what it chooses from v in [0, 1) at x with surface normal n (a directional light by
-// power with directional_prob, else the tree's leaf), and the probability of that choice.
-bool light_tree_sample(LightTreeRef t, vec3 x, vec3 n, float v, out uint entry, out float pmf) {
+// With the tree: what it chooses from v in [0, 1) at x with `receiver` (a directional light by power
+// with directional_prob, else the tree's leaf), and the probability of that choice.
+bool light_tree_sample(LightTreeRef t, vec3 x, vec4 receiver, float v, out uint entry, out float pmf) {
   entry = LIGHT_TREE_NONE;
   pmf = 0.0;
   if (v < t.h.directional_prob) {
@@ -119,7 +119,7 @@ bool light_tree_sample(LightTreeRef t, vec3 x, vec3 n, float v, out uint entry, 
   }
   float w = min((v - t.h.directional_prob) / (1.0 - t.h.directional_prob), 0.99999994);
   float p;
-  if (!light_tree_choose(t, x, n, w, entry, p)) return false;
+  if (!light_tree_choose(t, x, receiver, w, entry, p)) return false;
   pmf = (1.0 - t.h.directional_prob) * p;
   return pmf > 0.0;
 }
@@ -239,16 +239,16 @@ float environment_pdf(vec3 dir) {
 
 // The density with which either frame's light sampler picks a point on emitter triangle `tri`
 // (instance, geometry, triangle) that another strategy hit from x (that frame's render space;
-// n the surface normal there, as light sampling at x took it), `dist` away under cos_light: with
+// `receiver` the surface there, as light sampling at x took it), `dist` away under cos_light: with
 // the tree, that frame's tree's
 // probability of the triangle's entry at x, per area, as a solid angle; else sampling/emitter_pdf.h
 // with that frame's totals. `emission` is what the power weighs (SurfaceMaterial::light_emission).
-float emitter_light_pdf(bool prev, vec3 x, vec3 n, uvec3 tri, vec3 emission, float area, bool double_sided, float dist,
+float emitter_light_pdf(bool prev, vec3 x, vec4 receiver, uvec3 tri, vec3 emission, float area, bool double_sided, float dist,
                         float cos_light) {
   float env_select = prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob;
   if (k_light_tree) {
     LightTreeRef t = light_tree_of(prev);
-    float pmf = (1.0 - env_select) * light_tree_select(t, x, n, light_tree_entry(t, tri.x, tri.y, tri.z));
+    float pmf = (1.0 - env_select) * light_tree_select(t, x, receiver, light_tree_entry(t, tri.x, tri.y, tri.z));
     return emitter_pdf_solid_angle(pmf, area, dist, cos_light);
   }
   float total = prev ? u_frame.prev_total_emitter_power : u_frame.total_emitter_power;
@@ -337,14 +337,14 @@ bool punctual_light_with(bool prev, uint light, vec3 x, float pmf, out LightSamp
   return ls.pdf > 0.0;
 }
 
-// The same, its probability that of the frame's sampler at x (surface normal n): its tree's (the light is entry
+// The same, its probability that of the frame's sampler at x (`receiver`): its tree's (the light is entry
 // `emitters + light` of that frame's table), or its power share.
-bool punctual_light_at(bool prev, uint light, vec3 x, vec3 n, out LightSample ls) {
+bool punctual_light_at(bool prev, uint light, vec3 x, vec4 receiver, out LightSample ls) {
   float env_select = prev ? u_frame.prev_env_select_prob : u_frame.env_select_prob;
   float pmf;
   if (k_light_tree) {
     LightTreeRef t = light_tree_of(prev);
-    pmf = (1.0 - env_select) * light_tree_select(t, x, n, t.h.entry_count - u_frame.light_count + light);
+    pmf = (1.0 - env_select) * light_tree_select(t, x, receiver, t.h.entry_count - u_frame.light_count + light);
   } else {
     pmf = (1.0 - env_select) * punctual_in(prev, light).intensity_pmf.w;
   }
@@ -359,7 +359,7 @@ const uint LIGHT_ENVIRONMENT = 0xFFFFFFFFu;
 // `pmf` is the probability of the choice in that frame; with the alias table (by power, the
 // current frame's table for both frames) it is left to the caller. False when there is nothing
 // to choose.
-bool choose_light(bool prev, vec3 x, vec3 n, vec3 u, out uint index, out uint emitters, out float pmf) {
+bool choose_light(bool prev, vec3 x, vec4 receiver, vec3 u, out uint index, out uint emitters, out float pmf) {
   index = LIGHT_ENVIRONMENT;
   emitters = u_frame.emitter_count;
   pmf = 0.0;
@@ -371,7 +371,7 @@ bool choose_light(bool prev, vec3 x, vec3 n, vec3 u, out uint index, out uint em
       pmf = env_select;
       return env_select > 0.0;
     }
-    if (!light_tree_sample(t, x, n, (u.z - env_select) / (1.0 - env_select), index, pmf)) return false;
+    if (!light_tree_sample(t, x, receiver, (u.z - env_select) / (1.0 - env_select), index, pmf)) return false;
     pmf *= 1.0 - env_select;
     return true;
   }
@@ -397,21 +397,21 @@ LightSample environment_light_sample(bool prev, vec3 u) {
   return ls;
 }
 
-// The current frame's light sample u seen from x, on a surface of normal n (the geometric normal on
-// the side the path arrives from; the tree's receiver factor), with its radiance and solid-angle
-// density; false when it is unusable (a one-sided emitter seen from behind, a degenerate triangle).
-bool sample_light(vec3 x, vec3 n, vec3 u, out LightSample ls) {
+// The current frame's light sample u seen from x, on the surface `receiver` describes (its geometric
+// normal on the side the path arrives from and whether it is rough: bsdf_light_receiver; the tree's
+// receiver factor), with its radiance and solid-angle density; false when it is unusable (a one-sided emitter seen from behind, a degenerate triangle).
+bool sample_light(vec3 x, vec4 receiver, vec3 u, out LightSample ls) {
   ls = light_sample_none();
   uint index, emitters;
   float pmf;
-  if (!choose_light(false, x, n, u, index, emitters, pmf)) return false;
+  if (!choose_light(false, x, receiver, u, index, emitters, pmf)) return false;
   if (index == LIGHT_ENVIRONMENT) {
     ls = environment_light_sample(false, u);
     return ls.pdf > 0.0;
   }
   if (k_punctual && index >= emitters) {
     if (k_light_tree) return punctual_light_with(false, index - emitters, x, pmf, ls);
-    return punctual_light_at(false, index - emitters, x, n, ls);
+    return punctual_light_at(false, index - emitters, x, receiver, ls);
   }
   GpuEmitter e = b_emitters[index];
 
@@ -452,19 +452,19 @@ bool sample_light(vec3 x, vec3 n, vec3 u, out LightSample ls) {
 // same barycentrics is placed on its triangle as the previous frame's instance transform had it
 // (resolve_surface); a punctual light is where the previous frame's record has it. The caller
 // makes sure that the two frames' tables list the same lights (HISTORY_LIGHTS_RESELECTED).
-bool sample_light_in(bool prev, vec3 x, vec3 n, vec3 u, out LightSample ls) {
-  if (!prev) return sample_light(x, n, u, ls);
+bool sample_light_in(bool prev, vec3 x, vec4 receiver, vec3 u, out LightSample ls) {
+  if (!prev) return sample_light(x, receiver, u, ls);
   ls = light_sample_none();
   uint index, emitters;
   float pmf;
-  if (!choose_light(true, x, n, u, index, emitters, pmf)) return false;
+  if (!choose_light(true, x, receiver, u, index, emitters, pmf)) return false;
   if (index == LIGHT_ENVIRONMENT) {
     ls = environment_light_sample(true, u);
     return ls.pdf > 0.0;
   }
   if (k_punctual && index >= emitters) {
     if (k_light_tree) return punctual_light_with(true, index - emitters, x, pmf, ls);
-    return punctual_light_at(true, index - emitters, x, n, ls);
+    return punctual_light_at(true, index - emitters, x, receiver, ls);
   }
   GpuEmitter e = b_emitters[index];
   vec2 b = sample_triangle_barycentrics(u.xy);
@@ -493,7 +493,7 @@ bool sample_light_in(bool prev, vec3 x, vec3 n, vec3 u, out LightSample ls) {
   ls.area = rs.hit.area;
   ls.cos_light = abs(cos_light);
   ls.pdf = gris_sanitize(k_light_tree ? emitter_pdf_solid_angle(pmf, rs.hit.area, dist, ls.cos_light)
-                                      : emitter_light_pdf(true, x, n, uvec3(p.instance, p.geometry, p.triangle), e.emission.rgb, rs.hit.area, double_sided, dist, ls.cos_light));
+                                      : emitter_light_pdf(true, x, receiver, uvec3(p.instance, p.geometry, p.triangle), e.emission.rgb, rs.hit.area, double_sided, dist, ls.cos_light));
   return ls.pdf > 0.0 && !isinf(ls.pdf);
 }
 

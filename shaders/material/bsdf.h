@@ -61,6 +61,16 @@ INLINE float bsdf_specular_probability(BsdfParams p, float cos_o) {
   return ws / (ws + wd);
 }
 
+// The surface at a shading point as the light tree weighs lights for it (sampling/light_tree.h,
+// light_node_receiver): its geometric normal `ng` on the side the path arrives from, and 1 where
+// its integrand falls with the cosine at the receiver towards the surface's plane, as a rough
+// surface's does (GGX alpha at least BSDF_COSINE_RECEIVER_ALPHA, roughness 0.55), 0 for a glossy
+// one, whose f cos theta_i stays large there.
+CONST_DEF float BSDF_COSINE_RECEIVER_ALPHA = 0.3f;
+INLINE vec4 bsdf_light_receiver(vec3 ng, BsdfParams p) {
+  return vec4(ng, p.alpha >= BSDF_COSINE_RECEIVER_ALPHA ? 1.0f : 0.0f);
+}
+
 // f(wo, wi) * cos(theta_i); zero when either direction is below the surface.
 INLINE vec3 bsdf_eval_cos(BsdfParams p, vec3 wo, vec3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return vec3(0.0f);

@@ -54,7 +54,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
   vec3 throughput = vec3(1.0);
   float prev_bsdf_pdf = 0.0;  // 0 marks the camera vertex: emission seen directly is not MIS-weighted
   vec3 prev_position = vec3(0.0);  // the surface point the ray left, where its NEE sampled lights
-  vec3 prev_normal = vec3(0.0);    // its geometric normal on the side NEE took
+  vec4 prev_receiver = vec4(0.0);  // that surface as its NEE chose lights (bsdf_light_receiver)
   g_rays_primary++;
 
   for (uint depth = 1u; depth <= u_frame.max_depth; ++depth) {
@@ -76,7 +76,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     if (any(greaterThan(emission, vec3(0.0))) && (front || double_sided)) {
       float w = 1.0;
       if (k_emitters && prev_bsdf_pdf > 0.0) {
-        float light_pdf = emitter_light_pdf(false, prev_position, prev_normal, uvec3(rh.instance, rh.geometry, rh.triangle), m.light_emission,
+        float light_pdf = emitter_light_pdf(false, prev_position, prev_receiver, uvec3(rh.instance, rh.geometry, rh.triangle), m.light_emission,
                                             s.area, double_sided, rh.t, cos_hit);
         w = mis_power(prev_bsdf_pdf, light_pdf);
       }
@@ -98,7 +98,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     if (k_emitters || k_env_nee || k_punctual) {
       LightSample ls;
       vec3 ul = vec3(rng_next_float2(rng), rng_next_float(rng));
-      if (sample_light(s.position, ng, ul, ls) && dot(ls.direction, ng) > 0.0) {
+      if (sample_light(s.position, bsdf_light_receiver(ng, bsdf), ul, ls) && dot(ls.direction, ng) > 0.0) {
         vec3 wi = to_local(ls.direction, t, b, ns);
         vec3 f = bsdf_eval_cos(bsdf, wo, wi);
         if (any(greaterThan(f, vec3(0.0)))) {
@@ -124,7 +124,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     throughput *= weight;
     prev_bsdf_pdf = pdf;
     prev_position = s.position;
-    prev_normal = ng;
+    prev_receiver = bsdf_light_receiver(ng, bsdf);
     origin = x;
 
     if (float(depth) >= RR_START_DEPTH) {

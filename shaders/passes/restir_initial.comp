@@ -148,7 +148,7 @@ void trace_candidates(uvec2 pixel, uint key, float n_init) {
       uint base = dim_vertex(i) + DIM_NEE + 3u * j;
       LightSample ls;
       vec3 ul = vec3(rng_dim(key, base), rng_dim(key, base + 1u), rng_dim(key, base + 2u));
-      if (!sample_light(v.position, v.ng, ul, ls)) continue;
+      if (!sample_light(v.position, light_receiver(v), ul, ls)) continue;
       bool delta = k_punctual && ls.delta;  // a punctual light (cos_light 1)
       // Grazing light samples are outside every path structure (path_vertex.glsl): energy at
       // |cos| < SHIFT_MIN_COS, a 1e-6 fraction of a Lambertian emitter's output, is not sampled by NEE.

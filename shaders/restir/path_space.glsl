@@ -373,7 +373,7 @@ ShiftResult shift_path(bool prev, vec2 pixel, DomainPrimary dp, PathSample y, bo
       // counting measure over the lights, so no cos / dist^2 or area factor enters the density
       // (geometry = area = 1) and the Jacobian is the ratio of the replayed prefix densities alone;
       // 1/d^2 and the spot falloff are in the target function, through lk.radiance.
-      if (!punctual_light_at(prev, y.xk.triangle, v.position, v.ng, lk)) return shift_fail(r, SHIFT_FAIL_ZERO);
+      if (!punctual_light_at(prev, y.xk.triangle, v.position, light_receiver(v), lk)) return shift_fail(r, SHIFT_FAIL_ZERO);
       d = lk.direction;
       dist = lk.distance;
     } else {

@@ -136,11 +136,14 @@ vec3 surface_to_world(Vertex v, vec3 l) { return frame_to_world(v.n_surface, l);
 
 vec3 spawn(Vertex v) { return offset_ray_origin(v.position, v.ng); }
 
+// The surface at v as light sampling weighs lights for it (material/bsdf.h).
+vec4 light_receiver(Vertex v) { return bsdf_light_receiver(v.ng, v.bsdf); }
+
 // The light-sampling density at vertex v of the emitter point w that a path reached from it by BSDF
 // sampling, `dist` away, in either frame (the scene bridge's, sanitized like every weight;
 // light_pdf_environment is the bridge's).
 float light_pdf_emitter(bool prev, Vertex v, Vertex w, float dist) {
-  return gris_sanitize(emitter_light_pdf(prev, v.position, v.ng, uvec3(w.point.instance, w.point.geometry, w.point.triangle), w.material_emission, w.area, w.double_sided, dist, w.cos_in));
+  return gris_sanitize(emitter_light_pdf(prev, v.position, light_receiver(v), uvec3(w.point.instance, w.point.geometry, w.point.triangle), w.material_emission, w.area, w.double_sided, dist, w.cos_in));
 }
 
 // The MIS weight of the technique that produced the path's last vertex, power heuristic with the

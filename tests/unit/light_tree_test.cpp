@@ -72,7 +72,8 @@ TEST(LightTree, ProbabilitiesSumToOneAndAreThoseOfTheChoice) {
   scene::builtin::Pcg32 rng(7u);
   for (int k = 0; k < 40; ++k) {
     const glm::vec3 x(rng.uniform(-12.0f, 12.0f), rng.uniform(-12.0f, 12.0f), rng.uniform(-12.0f, 12.0f));
-    const glm::vec3 n = k % 4 == 0 ? glm::vec3(0.0f) : random_direction(rng);  // every fourth without a surface
+    // Every fourth without a surface; the others on one, half of them weighing by its cosine.
+    const glm::vec4 n = k % 4 == 0 ? glm::vec4(0.0f) : glm::vec4(random_direction(rng), float(k % 2));
     // At most one: a node may reach x where none of its children does (its bounds and cone are
     // looser than theirs, and on a surface its box may cross the surface's plane where theirs lie
     // behind it), and a choice that descends there finds no light (a wasted sample, not bias).
@@ -99,7 +100,8 @@ TEST(LightTree, EveryLightThatReachesThePointHasAPositiveProbability) {
   int reaching = 0, culled = 0, behind = 0;  // emitters facing x; of the others, those the bounds rule out
   for (int k = 0; k < 40; ++k) {
     const glm::vec3 x(rng.uniform(-12.0f, 12.0f), rng.uniform(-12.0f, 12.0f), rng.uniform(-12.0f, 12.0f));
-    const glm::vec3 n = k % 2 == 0 ? glm::vec3(0.0f) : random_direction(rng);
+    const glm::vec3 normal = k % 2 == 0 ? glm::vec3(0.0f) : random_direction(rng);
+    const glm::vec4 n(normal, float((k / 2) % 2));  // on a surface, every other one weighs by its cosine
     const bool surface = k % 2 != 0;
     for (uint32_t e = 0; e < m.table.emitters.size(); ++e) {
       const auto& t = m.table.emitters[e];
@@ -108,7 +110,7 @@ TEST(LightTree, EveryLightThatReachesThePointHasAPositiveProbability) {
       uint32_t flags;
       std::memcpy(&flags, &t.p2_flags.w, sizeof flags);
       const float facing = glm::dot(c, x - p0);  // the plane's side x is on: the whole triangle faces it or not
-      const bool in_front = !surface || glm::dot(n, p0 - x) > 0.0f || glm::dot(n, p1 - x) > 0.0f || glm::dot(n, p2 - x) > 0.0f;
+      const bool in_front = !surface || glm::dot(normal, p0 - x) > 0.0f || glm::dot(normal, p1 - x) > 0.0f || glm::dot(normal, p2 - x) > 0.0f;
       const float pmf = render::light_tree_pmf(tree, x, n, e);
       if ((facing > 0.0f || (flags & gpu::MATERIAL_DOUBLE_SIDED) != 0u) && in_front) {
         ++reaching;
@@ -123,7 +125,7 @@ TEST(LightTree, EveryLightThatReachesThePointHasAPositiveProbability) {
       const glm::vec3 to_x = glm::normalize(x - glm::vec3(r.position_range));
       const bool lit = m.lights[l].type == scene::LightType::kPoint ||
                        glm::dot(to_x, glm::vec3(r.direction_type)) > std::cos(m.lights[l].outer_cone);
-      const bool in_front = !surface || glm::dot(n, -to_x) > 0.0f;
+      const bool in_front = !surface || glm::dot(normal, -to_x) > 0.0f;
       const float pmf = render::light_tree_pmf(tree, x, n, uint32_t(m.table.emitters.size()) + l);
       if (lit && in_front) {
         EXPECT_GT(pmf, 0.0f) << "light " << l;
@@ -147,15 +149,15 @@ TEST(LightTree, StratifiedChoicesLandAsOftenAsTheProbabilitySays) {
   for (uint32_t i = 0; i < n; ++i) {
     uint32_t e;
     float pmf;
-    if (render::light_tree_choose(tree, x, glm::vec3(0.0f), (float(i) + 0.5f) / float(n), e, pmf)) ++count.at(e);
+    if (render::light_tree_choose(tree, x, glm::vec4(0.0f), (float(i) + 0.5f) / float(n), e, pmf)) ++count.at(e);
     else ++missed;
   }
   double sum = 0.0;
   // Each leaf owns an interval of u as long as its probability (to float rounding of the rescaled u
   // over about 20 levels): stratified counts are n pmf to within a few strata.
   for (uint32_t e = 0; e < entries(m.table); ++e) {
-    sum += render::light_tree_pmf(tree, x, glm::vec3(0.0f), e);
-    EXPECT_NEAR(double(count[e]), double(n) * render::light_tree_pmf(tree, x, glm::vec3(0.0f), e), 4.0) << "entry " << e;
+    sum += render::light_tree_pmf(tree, x, glm::vec4(0.0f), e);
+    EXPECT_NEAR(double(count[e]), double(n) * render::light_tree_pmf(tree, x, glm::vec4(0.0f), e), 4.0) << "entry " << e;
   }
   EXPECT_NEAR(double(missed), double(n) * (1.0 - sum), 8.0);
 }
@@ -173,8 +175,31 @@ TEST(LightTree, ChoosesNearLightsMoreOftenThanPowerDoes) {
     table.power.push_back(1.0);
   }
   const render::LightTree tree = render::build_light_tree(table, lights, 0);
-  EXPECT_GT(render::light_tree_pmf(tree, glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), 0), 0.25f);
-  EXPECT_LT(render::light_tree_pmf(tree, glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), 63), 1.0f / 640.0f);
+  EXPECT_GT(render::light_tree_pmf(tree, glm::vec3(0.0f, 2.0f, 0.0f), glm::vec4(0.0f, 1.0f, 0.0f, 1.0f), 0), 0.25f);
+  EXPECT_LT(render::light_tree_pmf(tree, glm::vec3(0.0f, 2.0f, 0.0f), glm::vec4(0.0f, 1.0f, 0.0f, 1.0f), 63), 1.0f / 640.0f);
+}
+
+TEST(LightTree, WeighsByTheReceiversCosineOnlyWhereAsked) {
+  // Two equal point lights 2 m from a point on a floor: one above it, one almost in the floor's
+  // plane (cosine 0.05). Weighed by the receiver's cosine (a rough floor) the second is chosen about
+  // a twentieth as often as the first; not weighed (a glossy floor, whose f cos theta_i stays large
+  // near its plane) about as often.
+  render::EmitterTable table;
+  std::vector<scene::Light> lights(2);
+  const float c = 0.05f, sn = std::sqrt(1.0f - c * c);
+  for (const glm::vec3 p : {glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(2.0f * sn, 2.0f * c, 0.0f)}) {
+    gpu::GpuPunctualLight r{};
+    r.position_range = glm::vec4(p, 0.0f);
+    r.direction_type = glm::vec4(0.0f, -1.0f, 0.0f, float(gpu::PUNCTUAL_POINT));
+    table.lights.push_back(r);
+    table.power.push_back(1.0);
+  }
+  const render::LightTree tree = render::build_light_tree(table, lights, 0);
+  const glm::vec3 x(0.0f);
+  const float weighed = render::light_tree_pmf(tree, x, glm::vec4(0, 1, 0, 1), 1) / render::light_tree_pmf(tree, x, glm::vec4(0, 1, 0, 1), 0);
+  const float glossy = render::light_tree_pmf(tree, x, glm::vec4(0, 1, 0, 0), 1) / render::light_tree_pmf(tree, x, glm::vec4(0, 1, 0, 0), 0);
+  EXPECT_NEAR(weighed, c, 0.01f);
+  EXPECT_NEAR(glossy, 1.0f, 0.01f);
 }
 
 TEST(LightTree, FindsEachEmittersEntryAndKeepsItsBounds) {
