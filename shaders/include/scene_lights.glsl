@@ -397,9 +397,10 @@ LightSample environment_light_sample(bool prev, vec3 u) {
   return ls;
 }
 
-// The current frame's light sample u seen from x, on the surface `receiver` describes (its geometric
-// normal on the side the path arrives from and whether it is rough: bsdf_light_receiver; the tree's
-// receiver factor), with its radiance and solid-angle density; false when it is unusable (a one-sided emitter seen from behind, a degenerate triangle).
+// The current frame's light sample u seen from x, on the surface `receiver` describes (its
+// geometric normal on the side the path arrives from and whether it is rough: bsdf_light_receiver;
+// the tree's receiver factor), with its radiance and solid-angle density; false when it is
+// unusable (a one-sided emitter seen from behind, a degenerate triangle).
 bool sample_light(vec3 x, vec4 receiver, vec3 u, out LightSample ls) {
   ls = light_sample_none();
   uint index, emitters;

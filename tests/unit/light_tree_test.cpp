@@ -110,7 +110,8 @@ TEST(LightTree, EveryLightThatReachesThePointHasAPositiveProbability) {
       uint32_t flags;
       std::memcpy(&flags, &t.p2_flags.w, sizeof flags);
       const float facing = glm::dot(c, x - p0);  // the plane's side x is on: the whole triangle faces it or not
-      const bool in_front = !surface || glm::dot(normal, p0 - x) > 0.0f || glm::dot(normal, p1 - x) > 0.0f || glm::dot(normal, p2 - x) > 0.0f;
+      const bool in_front =
+          !surface || glm::dot(normal, p0 - x) > 0.0f || glm::dot(normal, p1 - x) > 0.0f || glm::dot(normal, p2 - x) > 0.0f;
       const float pmf = render::light_tree_pmf(tree, x, n, e);
       if ((facing > 0.0f || (flags & gpu::MATERIAL_DOUBLE_SIDED) != 0u) && in_front) {
         ++reaching;
@@ -175,8 +176,9 @@ TEST(LightTree, ChoosesNearLightsMoreOftenThanPowerDoes) {
     table.power.push_back(1.0);
   }
   const render::LightTree tree = render::build_light_tree(table, lights, 0);
-  EXPECT_GT(render::light_tree_pmf(tree, glm::vec3(0.0f, 2.0f, 0.0f), glm::vec4(0.0f, 1.0f, 0.0f, 1.0f), 0), 0.25f);
-  EXPECT_LT(render::light_tree_pmf(tree, glm::vec3(0.0f, 2.0f, 0.0f), glm::vec4(0.0f, 1.0f, 0.0f, 1.0f), 63), 1.0f / 640.0f);
+  const glm::vec4 floor(0.0f, 1.0f, 0.0f, 1.0f);
+  EXPECT_GT(render::light_tree_pmf(tree, glm::vec3(0.0f, 2.0f, 0.0f), floor, 0), 0.25f);
+  EXPECT_LT(render::light_tree_pmf(tree, glm::vec3(0.0f, 2.0f, 0.0f), floor, 63), 1.0f / 640.0f);
 }
 
 TEST(LightTree, WeighsByTheReceiversCosineOnlyWhereAsked) {
@@ -196,8 +198,9 @@ TEST(LightTree, WeighsByTheReceiversCosineOnlyWhereAsked) {
   }
   const render::LightTree tree = render::build_light_tree(table, lights, 0);
   const glm::vec3 x(0.0f);
-  const float weighed = render::light_tree_pmf(tree, x, glm::vec4(0, 1, 0, 1), 1) / render::light_tree_pmf(tree, x, glm::vec4(0, 1, 0, 1), 0);
-  const float glossy = render::light_tree_pmf(tree, x, glm::vec4(0, 1, 0, 0), 1) / render::light_tree_pmf(tree, x, glm::vec4(0, 1, 0, 0), 0);
+  const glm::vec4 rough(0, 1, 0, 1), glossy_floor(0, 1, 0, 0);
+  const float weighed = render::light_tree_pmf(tree, x, rough, 1) / render::light_tree_pmf(tree, x, rough, 0);
+  const float glossy = render::light_tree_pmf(tree, x, glossy_floor, 1) / render::light_tree_pmf(tree, x, glossy_floor, 0);
   EXPECT_NEAR(weighed, c, 0.01f);
   EXPECT_NEAR(glossy, 1.0f, 0.01f);
 }
