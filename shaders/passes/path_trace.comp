@@ -94,11 +94,13 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     BsdfParams bsdf = m.bsdf;
     vec3 x = offset_ray_origin(s.position, ng);
 
+    vec4 receiver = bsdf_light_receiver(ng, bsdf);  // this surface as light sampling weighs lights for it
+
     // Next-event estimation, MIS-weighted against BSDF sampling.
     if (k_emitters || k_env_nee || k_punctual) {
       LightSample ls;
       vec3 ul = vec3(rng_next_float2(rng), rng_next_float(rng));
-      if (sample_light(s.position, bsdf_light_receiver(ng, bsdf), ul, ls) && dot(ls.direction, ng) > 0.0) {
+      if (sample_light(s.position, receiver, ul, ls) && dot(ls.direction, ng) > 0.0) {
         vec3 wi = to_local(ls.direction, t, b, ns);
         vec3 f = bsdf_eval_cos(bsdf, wo, wi);
         if (any(greaterThan(f, vec3(0.0)))) {
@@ -124,7 +126,7 @@ vec3 trace_path(vec2 pixel, inout Rng rng) {
     throughput *= weight;
     prev_bsdf_pdf = pdf;
     prev_position = s.position;
-    prev_receiver = bsdf_light_receiver(ng, bsdf);
+    prev_receiver = receiver;
     origin = x;
 
     if (float(depth) >= RR_START_DEPTH) {

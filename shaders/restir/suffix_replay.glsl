@@ -65,14 +65,14 @@ bool suffix_unchanged(bool prev, PathSample y, Vertex xk, vec3 dk) {
 }
 
 // The light sample that y's NEE end took at y_{n-1} (candidate y.light_index, its random numbers),
-// from `x` (the surface `receiver`) in the current (prev = false) or previous frame: the same light while
-// the light table chooses as it did (HISTORY_LIGHTS_RESELECTED), where that frame has it.
-bool replay_light_sample(bool prev, PathSample y, vec3 x, vec4 receiver, out LightSample ls) {
+// from vertex v in the current (prev = false) or previous frame: the same light while the light
+// table chooses as it did (HISTORY_LIGHTS_RESELECTED), where that frame has it.
+bool replay_light_sample(bool prev, PathSample y, Vertex v, out LightSample ls) {
   ls = light_sample_none();
   if ((history_flags() & HISTORY_LIGHTS_RESELECTED) != 0u) return false;
   uint base = dim_vertex(y.segments - 1u) + DIM_NEE + 3u * y.light_index;
   vec3 ul = vec3(rng_dim(y.seed, base), rng_dim(y.seed, base + 1u), rng_dim(y.seed, base + 2u));
-  return sample_light_in(prev, x, receiver, ul, ls);
+  return sample_light_in(prev, v.position, light_receiver(v), ul, ls);
 }
 
 // omega'_k of a suffix whose one segment ends at a punctual light (k + 1 = n, SAMPLE_PUNCTUAL): the
@@ -82,7 +82,7 @@ bool replay_light_sample(bool prev, PathSample y, vec3 x, vec4 receiver, out Lig
 bool punctual_end_direction(bool prev, PathSample y, Vertex xk, out vec3 dk) {
   LightSample ls;
   dk = vec3(0.0, 0.0, 1.0);
-  if (!replay_light_sample(prev, y, xk.position, light_receiver(xk), ls) || !ls.delta) return false;
+  if (!replay_light_sample(prev, y, xk, ls) || !ls.delta) return false;
   dk = ls.direction;
   return true;
 }
@@ -114,7 +114,7 @@ SuffixReplay replay_suffix(bool prev, Vertex xk, vec3 dk, PathSample y) {
     LightSample ls = light_sample_none();
     if (light_sample) {
       if ((history_flags() & HISTORY_LIGHTS_RESELECTED) != 0u) return replay_fail(r, SHIFT_FAIL_STALE);
-      if (!replay_light_sample(prev, y, v.position, light_receiver(v), ls)) return replay_fail(r, SHIFT_FAIL_REPLAY);
+      if (!replay_light_sample(prev, y, v, ls)) return replay_fail(r, SHIFT_FAIL_REPLAY);
       if (punctual != ls.delta) return replay_fail(r, SHIFT_FAIL_REPLAY);
       // NEE does not sample grazing light (restir_initial.comp): outside the structure.
       if (!isinf(ls.distance) && ls.cos_light < SHIFT_MIN_COS) return replay_fail(r, SHIFT_FAIL_STRUCTURE);

@@ -30,11 +30,10 @@ CONST_DEF float LIGHT_TREE_MIN_COS = 1e-3f;
 // seen at a grazing angle, a point light's highlight comes from a light there, and the weight made
 // it a rare pick of huge value: docs/BENCHMARKS.md, "Many lights"); so bsdf_light_receiver
 // (material/bsdf.h) weighs only rough surfaces.
-INLINE float light_node_receiver(vec3 lo, vec3 hi, vec3 x, vec4 r) {
+// `to_centre`: from x to the box's centre; `half_extent`: half the box's size.
+INLINE float light_node_receiver(vec3 half_extent, vec3 to_centre, vec4 r) {
   vec3 nrm = vec3(r.x, r.y, r.z);
   if (!(dot(nrm, nrm) > 0.0f)) return 1.0f;
-  vec3 half_extent = 0.5f * (hi - lo);
-  vec3 to_centre = lo + half_extent - x;
   float top = dot(nrm, to_centre) + dot(abs(nrm), half_extent);
   if (top < 0.0f) {
     vec3 reach = abs(to_centre) + half_extent;
@@ -60,10 +59,10 @@ INLINE float light_node_importance(GpuLightNode n, vec3 x, vec4 r) {
   if (!(power > 0.0f)) return 0.0f;
   vec3 lo = vec3(n.lo_power.x, n.lo_power.y, n.lo_power.z);
   vec3 hi = vec3(n.hi_cos_o.x, n.hi_cos_o.y, n.hi_cos_o.z);
-  float receiver = light_node_receiver(lo, hi, x, r);
-  if (!(receiver > 0.0f)) return 0.0f;
   vec3 half_extent = 0.5f * (hi - lo);
   vec3 d = x - (lo + half_extent);
+  float receiver = light_node_receiver(half_extent, -d, r);
+  if (!(receiver > 0.0f)) return 0.0f;
   float r2 = dot(half_extent, half_extent);
   float d2 = dot(d, d);
   float dist2 = max(max(d2, r2), 1e-20f);
