@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <stdexcept>
 
 #include "embedded_shaders.h"
 #include "gpu/pipeline_warmup.h"
@@ -143,6 +144,9 @@ namespace {
 void bind(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& set, const void* push_constants,
           uint32_t push_bytes) {
   p.wait_if_warming();
+  // A pipeline made while record_pipelines ran has a layout only: binding it would hand the driver
+  // a null pipeline (lavapipe crashes on its queue thread).
+  if (p.pipeline() == VK_NULL_HANDLE) throw std::logic_error("pipeline " + p.name() + " was only recorded, not created: it cannot be dispatched");
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline());
   if (push_bytes > 0) vkCmdPushConstants(cmd, p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes, push_constants);
   VkDescriptorSet s = set.handle();

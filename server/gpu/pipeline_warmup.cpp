@@ -46,6 +46,8 @@ std::string PipelineInfo::key() const {
   return key;
 }
 
+bool recording_pipelines() { return t_recording != nullptr; }
+
 std::vector<PipelineInfo> record_pipelines(const std::function<void()>& build) {
   std::vector<PipelineInfo> out;
   t_recording = &out;

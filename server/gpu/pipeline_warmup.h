@@ -33,6 +33,10 @@ struct PipelineInfo {
 // The pipelines `build` creates on this thread (each once, in order of creation). While it runs,
 // ComputePipeline makes layouts only (no VkPipeline): run it on a context of its own, thrown away after.
 std::vector<PipelineInfo> record_pipelines(const std::function<void()>& build);
+// Whether record_pipelines is running on this thread. Nothing can be dispatched then (its pipelines
+// have no VkPipeline): a renderer that would measure its scene on the device while being built
+// (restir-multilayer's layer count) takes a stand-in value that creates the same pipelines.
+bool recording_pipelines();
 
 struct WarmupProgress {
   size_t done = 0, total = 0;

@@ -193,5 +193,27 @@ TEST(WarmUpTest, ColdCacheProgressiveStartRendersPtUntilTheMethodIsCompiled) {
   EXPECT_TRUE(second.close().ok());
 }
 
+// A session's start asks whether its method's pipelines are compiled by building the renderer on a
+// context that only records them. restir-multilayer with its layer count measured (the default)
+// measures the scene with a ray probe while it is built: that probe must not be dispatched on the
+// recording context (it crashed the daemon on lavapipe's queue thread), so the session starts, its
+// first frame arrives, and the daemon goes on serving.
+TEST(WarmUpTest, AMultilayerSessionMeasuringItsLayersStartsProgressively) {
+  OpsDaemon daemon({"--progressive-start"});
+  auto stub = v1::RenderService::NewStub(loopback_channel(daemon.address()));
+  auto req = session_request("cornell", 16, 16);
+  req.set_method("restir-multilayer");
+  const v1::Session s = create_ok(*stub, req);
+  StreamClient stream(*stub);
+  ASSERT_TRUE(stream.send(frame_input(1, s.name(), 0))) << daemon.process().output();
+  const auto frame = stream.read();
+  ASSERT_TRUE(frame) << daemon.process().output();
+  EXPECT_GT(frame->images_size(), 0) << daemon.process().output();
+  EXPECT_TRUE(stream.close().ok()) << daemon.process().output();
+  auto again = session_request("cornell", 16, 16);
+  again.set_method("pt");
+  create_ok(*stub, again);  // still serving
+}
+
 }  // namespace
 }  // namespace strata::test

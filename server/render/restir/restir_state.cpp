@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "include/bindings.h"
+#include "gpu/pipeline_warmup.h"
 #include "render/restir/layer_count.h"
 #include "include/scene_data.h"
 #include "restir/layer_data.h"
@@ -82,6 +83,11 @@ RestirState::RestirState(const SharedResources& shared_resources, const RenderSe
     if (settings.restir.layers > 0) {
       layers = settings.restir.layers;
       layers_reason = "requested";
+    } else if (gpu::recording_pipelines()) {
+      // Only the pipelines are being recorded (a session's start asks whether they are compiled),
+      // so nothing can be measured on the device: every count above 1 creates the same pipelines.
+      layers = 2;
+      layers_reason = "recording pipelines";
     } else {
       const auto& scene = shared.scene.scene();
       LayerCount measured = measure_layers(shared.ctx, scene, scene.frame_state(0), width, height);
