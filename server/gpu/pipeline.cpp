@@ -146,7 +146,8 @@ void bind(VkCommandBuffer cmd, const ComputePipeline& p, const DescriptorSet& se
   p.wait_if_warming();
   // A pipeline made while record_pipelines ran has a layout only: binding it would hand the driver
   // a null pipeline (lavapipe crashes on its queue thread).
-  if (p.pipeline() == VK_NULL_HANDLE) throw std::logic_error("pipeline " + p.name() + " was only recorded, not created: it cannot be dispatched");
+  if (p.pipeline() == VK_NULL_HANDLE)
+    throw std::logic_error("pipeline " + p.name() + " was only recorded, not created: it cannot be dispatched");
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline());
   if (push_bytes > 0) vkCmdPushConstants(cmd, p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes, push_constants);
   VkDescriptorSet s = set.handle();
