@@ -7,9 +7,6 @@
 namespace strata::service {
 namespace {
 
-// The second run's seed: another random stream of the same session seed.
-constexpr uint32_t k_second_run_seed = 0x9e3779b9u;
-
 // The least of a candidate's frame times: lavapipe's GPU time is CPU time that other processes on
 // the machine only add to (pt at 64x64 read 8 to 16 ms a frame within one minute on a loaded
 // 2-core VM), so the least time is its own cost.
@@ -22,7 +19,7 @@ double mean(const std::vector<double>& v) {
 std::array<std::unique_ptr<render::Renderer>, 2> two_runs(const gpu::Context& ctx, const scene::Scene& scene,
                                                           const render::RenderSettings& s) {
   render::RenderSettings second = s;
-  second.seed = s.seed ^ k_second_run_seed;
+  second.seed = s.seed ^ k_auto_second_run_seed;
   return {std::make_unique<render::Renderer>(ctx, scene, s), std::make_unique<render::Renderer>(ctx, scene, second)};
 }
 
@@ -57,8 +54,10 @@ AutoCalibration::AutoCalibration(const gpu::Context& ctx, const scene::Scene& sc
 AutoCalibration::~AutoCalibration() = default;
 
 render::FrameResult AutoCalibration::render(const scene::FrameState& frame, uint32_t frame_index) {
-  std::array<render::FrameResult, 2> pt = {pt_[0]->render(frame, frame_index), pt_[1]->render(frame, frame_index)};
   const uint32_t k = frames_++;
+  const bool measured = k >= k_auto_first_measured;
+  std::vector<render::FrameResult> pt;
+  if (k == 0 || measured) pt = {pt_[0]->render(frame, frame_index), pt_[1]->render(frame, frame_index)};
   if (k == 0) {
     // pt's error per sample: how hard the light is to find, which sets restir-gather's cap before
     // restir-gather's runs start (on this same frame, so that its first run is what a restir-gather
@@ -71,25 +70,33 @@ render::FrameResult AutoCalibration::render(const scene::FrameState& frame, uint
     reuse_ = two_runs(ctx_, scene_, reuse_settings_);
   }
   std::array<render::FrameResult, 2> reuse = {reuse_[0]->render(frame, frame_index), reuse_[1]->render(frame, frame_index)};
-  if (k >= k_auto_first_measured) {
+  if (measured) {
     const std::array<const image::Image*, 4> runs = {&pt[0].image, &pt[1].image, &reuse[0].image, &reuse[1].image};
     const image::Image ref = robust_reference(runs);
     pt_relmse_.push_back(paired_relmse(pt[0].image, pt[1].image, ref));
     reuse_relmse_.push_back(paired_relmse(reuse[0].image, reuse[1].image, ref));
     for (const auto& r : pt) pt_ms_.push_back(r.stats.gpu_ms_total);
     for (const auto& r : reuse) reuse_ms_.push_back(r.stats.gpu_ms_total);
+    estimate();
+    decided_ = auto_decisive(choice_.pt, choice_.reuse, choice_.measured_frames);
   }
+  // The frame sent: the mean of restir-gather's two runs, independent unbiased estimates of the same
+  // frame, so half the variance of either at no further cost; its statistics are the first run's.
   render::FrameResult shown = std::move(reuse[0]);
-  const std::array<render::FrameResult, 3> others = {std::move(reuse[1]), std::move(pt[0]), std::move(pt[1])};
+  const std::vector<float>& second = reuse[1].image.rgba;
+  for (size_t i = 0; i < shown.image.rgba.size(); ++i) shown.image.rgba[i] = 0.5f * (shown.image.rgba[i] + second[i]);
+  std::vector<render::FrameResult> others;
+  others.push_back(std::move(reuse[1]));
+  for (auto& r : pt) others.push_back(std::move(r));
   add_other_runs(shown, others);
-  if (done()) finish();
+  if (done()) choice_.method = &auto_method(choice_.pt, choice_.reuse);
   return shown;
 }
 
-void AutoCalibration::finish() {
+void AutoCalibration::estimate() {
   choice_.pt = {mean(pt_relmse_), least(pt_ms_)};
   choice_.reuse = {mean(reuse_relmse_), least(reuse_ms_)};
-  choice_.method = &auto_method(choice_.pt, choice_.reuse);
+  choice_.measured_frames = uint32_t(pt_relmse_.size());
 }
 
 std::unique_ptr<render::Renderer> AutoCalibration::take_chosen() {

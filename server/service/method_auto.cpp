@@ -24,8 +24,9 @@ std::string sig3(double v) {
 }
 
 std::string frames_text(const AutoChoice& c) {
-  return std::to_string(c.first_frame + k_auto_first_measured) + ".." +
-         std::to_string(c.first_frame + k_auto_calibration_frames - 1);
+  const uint64_t first = c.first_frame + k_auto_first_measured;
+  return c.measured_frames <= 1 ? "frame " + std::to_string(first)
+                                : "frames " + std::to_string(first) + ".." + std::to_string(first + c.measured_frames - 1);
 }
 
 }  // namespace
@@ -87,6 +88,15 @@ float auto_confidence_cap(double pt_first_relmse, std::optional<float> requested
   return render::method_spec(k_auto_reuse).confidence_cap;
 }
 
+bool auto_decisive(const CandidateEstimate& pt, const CandidateEstimate& reuse, uint32_t measured_frames) {
+  if (measured_frames == 0) return false;
+  if (measured_frames >= k_auto_decisive_ratio.size()) return true;
+  const double k = k_auto_decisive_ratio[measured_frames - 1];
+  if (!(pt.product() > 0.0) || !std::isfinite(reuse.product())) return false;  // decided by more frames
+  const double ratio = reuse.product() / pt.product();
+  return ratio < 1.0 / k || ratio > k;
+}
+
 const render::MethodSpec& auto_method(const CandidateEstimate& pt, const CandidateEstimate& reuse) {
   // pt's RelMSE x spp is constant (docs/BENCHMARKS.md, "How methods are compared"), so at the
   // other's frame time a candidate's error is its RelMSE x ms over that time: the lower product wins.
@@ -99,7 +109,7 @@ std::string auto_method_reason(const AutoChoice& c) {
   const std::string other = c.method->name == std::string(k_auto_pt) ? k_auto_reuse : k_auto_pt;
   const double ratio = c.ratio();
   return std::string("auto: ") + c.method->name + " (est. RelMSE x ms of restir-gather " + fixed(ratio, 2) +
-         " of pt's over frames " + frames_text(c) + " at " + std::to_string(c.width) + "x" + std::to_string(c.height) +
+         " of pt's over " + frames_text(c) + " at " + std::to_string(c.width) + "x" + std::to_string(c.height) +
          ": pt " + sig3(c.pt.relmse) + " x " + fixed(c.pt.ms, 1) + " ms, restir-gather " + sig3(c.reuse.relmse) + " x " +
          fixed(c.reuse.ms, 1) + " ms; " + (ratio < 1.0 ? "below 1" : "not below 1") + ": " + c.method->name +
          " has the lower error at equal GPU time, " + other +
@@ -128,10 +138,13 @@ void describe_auto(std::vector<v1::Decision>& decisions, const std::string& requ
         d.set_reason(auto_method_reason(*choice) + "; " + choice->method->summary);
       } else {
         d.set_value(k_auto_reuse);
-        d.set_reason("auto: calibrating over frames " + std::to_string(calibrating_from) + ".." +
-                     std::to_string(calibrating_from + k_auto_calibration_frames - 1) + " (" + why_calibrating +
-                     "): pt and restir-gather each render every frame twice, and the one with the lower estimated "
-                     "RelMSE x GPU ms is kept; the frames sent meanwhile are restir-gather's first run's");
+        d.set_reason("auto: calibrating from frame " + std::to_string(calibrating_from) + " for " +
+                     std::to_string(k_auto_first_measured + 1) + " to " + std::to_string(k_auto_calibration_frames) +
+                     " frames (" + why_calibrating +
+                     "): restir-gather renders every frame twice and pt frame " + std::to_string(calibrating_from) +
+                     " and frames " + std::to_string(calibrating_from + k_auto_first_measured) +
+                     ".. twice, and the one with the lower estimated RelMSE x GPU ms is kept; the frames sent meanwhile "
+                     "are the mean of restir-gather's two runs");
       }
     } else if (d.name() == "confidence_cap" && choice && choice->cap_chosen && d.applies()) {
       d.set_reason(auto_cap_reason(*choice));

@@ -4,6 +4,7 @@
 // estimates each one's RelMSE from the two runs' differences and its GPU time per frame, and keeps
 // the one with the lower RelMSE x ms (the lower error at equal time). Here: the estimates, the choice
 // and how the decisions say them; service/auto_calibration.h renders the runs.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -26,12 +27,24 @@ std::vector<std::string> session_methods();
 inline constexpr const char* k_auto_pt = "pt";
 inline constexpr const char* k_auto_reuse = "restir-gather";
 
-// The calibration's frames, counted from where it starts: every frame renders both candidates twice
-// (on frame 0 pt first: its error per sample decides restir-gather's confidence cap), and frames
-// k_auto_first_measured.. are measured (restir-gather's first frames have little history, and are
-// not what the session would render from then on).
+// The calibration's frames, counted from where it starts. Every frame renders restir-gather twice
+// (its history must build up in both runs); pt, which keeps no history, renders twice on frame 0 (its
+// error per sample decides restir-gather's confidence cap) and on the measured frames,
+// k_auto_first_measured.. (restir-gather's first frames have little history, and are not what the
+// session would render from then on). The calibration ends on the first measured frame where the
+// estimate is decisive (k_auto_decisive_ratio), at the latest after k_auto_calibration_frames.
 inline constexpr uint32_t k_auto_calibration_frames = 5;
 inline constexpr uint32_t k_auto_first_measured = 2;
+// The estimate is decisive after n measured frames where restir-gather's RelMSE x ms over pt's lies
+// outside [1 / k, k] with k = k_auto_decisive_ratio[n - 1]: one frame of 256x256 gives the ratio to
+// well within 2x (restir-gather / pt at equal time: cornell 0.2-0.36, carousel-bounce 0.15-0.24,
+// foliage 2.1-3.5; docs/BENCHMARKS.md), while near-ties (carousel 0.88-1.14, chess 1.2-1.4) take
+// more frames. The last entry is 1: the calibration's last frame always decides.
+inline constexpr std::array<double, 3> k_auto_decisive_ratio = {2.0, 1.5, 1.0};
+static_assert(k_auto_first_measured + k_auto_decisive_ratio.size() == k_auto_calibration_frames);
+
+// Each candidate's second run renders with the session's seed XOR this: another random stream.
+inline constexpr uint32_t k_auto_second_run_seed = 0x9e3779b9u;
 
 // Where pt's estimated RelMSE of one sample per pixel is at least this, the light is hard to find
 // (most paths miss it, a few carry it: carousel-bounce 5.7, against 0.03-0.21 on carousel, chess,
@@ -67,6 +80,7 @@ struct AutoChoice {
   float confidence_cap = 0.0f;   // restir-gather's cap where something moved, as the calibration ran it
   bool cap_chosen = false;       // chosen by auto (false: the session asked for one)
   uint64_t first_frame = 0;      // the session's frame the calibration started at
+  uint32_t measured_frames = 0;  // frames measured (from first_frame + k_auto_first_measured)
   uint32_t width = 0, height = 0;
   // restir-gather's RelMSE x ms over pt's: below 1 restir-gather wins at equal time.
   double ratio() const { return pt.product() > 0.0 ? reuse.product() / pt.product() : 0.0; }
@@ -75,6 +89,9 @@ struct AutoChoice {
 // restir-gather's cap where something moved: the requested one, else k_auto_hard_light_cap where
 // pt's RelMSE per sample reaches k_auto_hard_light_relmse, else the method's.
 float auto_confidence_cap(double pt_first_relmse, std::optional<float> requested);
+
+// Whether the estimate after `measured_frames` measured frames decides (k_auto_decisive_ratio).
+bool auto_decisive(const CandidateEstimate& pt, const CandidateEstimate& reuse, uint32_t measured_frames);
 
 // The candidate with the lower RelMSE x ms; pt on a tie and when restir-gather's figures are not
 // finite.
