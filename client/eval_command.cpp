@@ -7,6 +7,7 @@
 // frame time. With --score-from N the first N frames warm each method up: they are played but
 // neither scored nor timed, and need no reference. A --methods entry may carry ReSTIR flags of its
 // own (eval_method.h); --save-frames keeps every scored frame and its reference as EXR.
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
@@ -195,6 +196,7 @@ class Evaluation {
       std::vector<RoundTimes> times(runs.size());
       auto t = Clock::now();
       client_.run_interleaved(scene, plays, a_, [&](size_t i, MethodImage&& m) {
+        if (!m.chosen_method.empty()) runs[i]->round_choices.push_back(m.chosen_method);
         if (m.frame >= a_.score_from) times[i].add(m.gpu_ms, m.pass_ms);
         step(m.frame, ms_since(t), m.gpu_ms,
              scene + " " + plays[i].first + " spp " + std::to_string(plays[i].second) + " frame " + std::to_string(m.frame) + " (timing)");
@@ -214,6 +216,10 @@ class Evaluation {
     double cumulative = 0.0;  // over every frame played, warm-up included
     auto t = Clock::now();
     client_.run_method(scene, method, spp, a_, [&](MethodImage&& m) {
+      if (!m.chosen_method.empty()) {
+        r.round_choices.push_back(m.chosen_method);
+        r.choice_reason = m.choice_reason;
+      }
       if (m.frame < a_.score_from) {
         cumulative += m.gpu_ms;
         step(m.frame, ms_since(t), m.gpu_ms, scene + " " + method + " spp " + std::to_string(spp) + " frame " + std::to_string(m.frame) + " (warm-up)");
@@ -273,6 +279,13 @@ void print_summary(const report::Report& rep) {
     const report::Errors e = mean_errors(run);
     std::cout << run.scene << "  " << run.method << "  median " << median_gpu_ms(run) << " ms/frame  relmse " << e.relmse
               << " (luminance " << e.relmse_luminance << ")  mape " << e.mape << "  flip " << e.flip << "\n";
+    if (run.round_choices.empty()) continue;
+    std::cout << run.scene << "  " << run.method << "  chose";
+    for (const auto& c : run.round_choices) std::cout << " " << c;
+    const bool mixed = std::any_of(run.round_choices.begin(), run.round_choices.end(),
+                                   [&](const std::string& c) { return c != run.round_choices.front(); });
+    std::cout << (mixed ? " (the rounds chose differently: its time mixes the choices' times)" : "") << ": "
+              << run.choice_reason << "\n";
   }
   for (const auto& et : rep.equal_time)
     std::cout << et.scene << "  equal time: " << et.method << " (" << et.method_median_ms << " ms) vs pt at " << et.pt_spp

@@ -153,8 +153,16 @@ void EvalClient::run_interleaved(const std::string& scene, const std::vector<std
     std::vector<std::unique_ptr<EvalSession>> sessions;
     for (size_t i = first; i < end; ++i)
       sessions.push_back(std::make_unique<EvalSession>(*stub_, scene_source(scene), scene, runs[i].first, runs[i].second, s, timeout()));
+    // The order rotates by one run each frame, so that no run always follows the same one: on
+    // lavapipe a frame's time depends on what ran just before it (foliage: pt's frames read 225-230
+    // ms where each followed a pt run, its frames under method auto 296-303 ms where each followed a
+    // restir-gather run; docs/BENCHMARKS.md, "Method auto").
+    const size_t n = end - first;
     for (uint32_t f = 0; f < s.frames; ++f)
-      for (size_t i = first; i < end; ++i) on_frame(i, sessions[i - first]->next(f));
+      for (size_t k = 0; k < n; ++k) {
+        const size_t i = first + (f + k) % n;
+        on_frame(i, sessions[i - first]->next(f));
+      }
     for (auto& session : sessions) session->finish();
   }
 }

@@ -55,6 +55,8 @@ struct MethodImage {
   image::Image image;
   double gpu_ms = 0.0;
   std::map<std::string, double> pass_ms;
+  // Where method auto chose on this frame (its `method` entry in option_changes): what, and why.
+  std::string chosen_method, choice_reason;
 };
 
 // A frame's image as the server encoded it (EXR_HALF or RAW_RGBA16F).

@@ -82,6 +82,11 @@ MethodImage EvalSession::next(uint32_t f) {
   m.image = decode_image(frame.images(0));
   m.gpu_ms = frame.gpu_ms_total();
   for (const auto& p : frame.pass_ms()) m.pass_ms[p.pass()] += p.ms();
+  for (const auto& d : frame.option_changes())
+    if (d.name() == "method") {
+      m.chosen_method = d.value();
+      m.choice_reason = d.reason();
+    }
   ++received_;
   if (from_stand_in(frame, method_)) stand_in_frames_++;
   return m;

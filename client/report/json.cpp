@@ -34,6 +34,8 @@ nlohmann::json run_json(const Run& run) {
           {"matched_method", run.matched_method},
           {"round_ms", run.round_ms},
           {"round_pass_ms", run.round_pass_ms},
+          {"round_choices", run.round_choices},
+          {"choice_reason", run.choice_reason},
           {"frames", std::move(frames)}};
 }
 

@@ -42,6 +42,11 @@ struct Run {
   std::vector<double> round_ms;
   // The same per pass: each round's median ms of every pass (the first round's from `frames`).
   std::vector<std::map<std::string, double>> round_pass_ms;
+  // Method auto: the method it chose in each round (the first is `frames`'s), and the scored
+  // round's reason. Its choice rests on measured time, so rounds may choose differently; the
+  // run's time then mixes the choices' times (print_summary says so).
+  std::vector<std::string> round_choices;
+  std::string choice_reason;
 };
 
 // Equal-time comparison: pt with `pt_spp` samples per frame against a method's median frame time.

@@ -58,6 +58,7 @@ constexpr Choice k_lod_mapping[] = {
     {"uv", 3, u(LodMapping::uv), "the vertex mapping tau through the shared UV parametrisation (the LOD paper)"},
 };
 constexpr Choice k_light_sampler[] = {
+    {"auto", 3, u(LightSampler::automatic), "tree where the scene has at least 16 bounded lights (emissive triangles, point and spot lights), else power"},
     {"power", 1, u(LightSampler::power), "an alias table by power: every light's probability the same everywhere"},
     {"tree", 2, u(LightSampler::tree),
      "the light tree: near and facing lights more often, by importance at the shading point (Conty Estevez & Kulla 2018)"},

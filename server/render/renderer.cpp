@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "render/frame_constants.h"
+#include "render/light_sampler_choice.h"
 #include "render/method_table.h"
 #include "restir/layer_data.h"
 #include "restir/restir_limits.h"
@@ -45,7 +46,8 @@ Renderer::Renderer(const gpu::Context& ctx, const scene::Scene& scene, RenderSet
   settings_.validate();
   // Temporal reuse needs the previous frame's TLAS and instances on the device; `pt` keeps none.
   scene_ = std::make_unique<GpuScene>(ctx, scene, /*keep_history=*/method_spec(settings_.method).reuse,
-                                      /*light_tree=*/settings_.restir.light_sampler == LightSampler::tree);
+                                      /*light_tree=*/light_sampler_in_use(settings_.restir.light_sampler, bounded_lights(scene)) ==
+                                          LightSampler::tree);
   const RestirOptions& ro = settings_.restir;
   scene_->set_lod_mapping({.uv = ro.lod_mapping != LodMapping::off,
                            .matching = ro.lod_matching,

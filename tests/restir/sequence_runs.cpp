@@ -45,6 +45,7 @@ RunningImage pt_reference(const scene::Scene& s, const SequenceRun& run, uint32_
     rs.spp = spp;
     rs.max_depth = run.max_depth;
     rs.seed = 90000 + r;
+    rs.restir.light_sampler = render::LightSampler::power;  // the plain alias table, independent of the light tree
     image::Image mean;
     for (uint32_t f = 1; f < run.frames; ++f) {
       render::Renderer renderer(gpu_context(), s, rs);

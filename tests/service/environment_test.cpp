@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 
 #include "harness.h"
 
@@ -62,6 +63,31 @@ TEST_F(EnvironmentTest, AMapSentInlineOrByPathLightsTheScene) {
   }
   EXPECT_GT(means[1], means[0] * 1.05) << "the inline sky adds light";
   EXPECT_GT(means[2], means[1] * 1.5) << "four times the sky adds more";
+}
+
+// light_sampler auto, the default, takes the light tree on night-street (64 punctual lights and
+// hundreds of emissive triangles) and power on cornell (two emissive triangles), and says why; an
+// explicit choice stays, with what auto would have taken.
+TEST_F(EnvironmentTest, TheLightSamplerFollowsTheScenesBoundedLights) {
+  auto sampler = [&](const std::string& scene, std::optional<v1::LightSampler> asked) {
+    auto req = session_request(scene, 16, 16);
+    if (asked) req.mutable_options()->set_light_sampler(*asked);
+    const v1::Session s = create_ok(stub(), req);
+    EXPECT_TRUE(delete_session(stub(), s.name()).ok());
+    const v1::Decision* d = decision(s, "light_sampler");
+    return d ? *d : v1::Decision{};
+  };
+  const v1::Decision street = sampler("night-street", std::nullopt);
+  EXPECT_EQ(street.value(), "tree");
+  EXPECT_EQ(street.requested(), "");
+  EXPECT_NE(street.reason().find("auto: the scene has 822 bounded lights"), std::string::npos) << street.reason();
+  const v1::Decision cornell = sampler("cornell", v1::LIGHT_SAMPLER_AUTO);
+  EXPECT_EQ(cornell.value(), "power");
+  EXPECT_EQ(cornell.requested(), "auto");
+  EXPECT_NE(cornell.reason().find("auto: the scene has 2 bounded lights"), std::string::npos) << cornell.reason();
+  const v1::Decision asked = sampler("night-street", v1::LIGHT_SAMPLER_POWER);
+  EXPECT_EQ(asked.value(), "power");
+  EXPECT_NE(asked.reason().find("as asked; auto would take tree"), std::string::npos) << asked.reason();
 }
 
 // cornell-lamps' lights moved by the client: the analysis lists them, and a light sent far away

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "render/light_sampler_choice.h"
 #include "render/punctual_lights.h"
 #include "scene/scene_io.h"
 #include "support/cpu_tracer.h"
@@ -52,6 +53,19 @@ TEST(BuiltinNightStreet, ManyLightsMostPowerFarAway) {
     if (l.name.starts_with("floodlight") || l.name.starts_with("high mast")) far += power;
   }
   EXPECT_GT(far, 0.5 * total);
+}
+
+// light_sampler auto takes the tree on night-street and power where a few lights light the scene.
+TEST(BuiltinNightStreet, AutoLightSamplerTakesTheTreeForItsManyLights) {
+  using render::LightSampler;
+  EXPECT_EQ(render::bounded_lights(builtin_scene("night-street")), 822u);  // 758 emissive triangles, 64 point and spot lights
+  EXPECT_EQ(render::bounded_lights(builtin_scene("cornell")), 2u);
+  EXPECT_EQ(render::bounded_lights(builtin_scene("cornell-lamps")), 2u);   // its sun is directional
+  EXPECT_EQ(render::light_sampler_in_use(LightSampler::automatic, 822), LightSampler::tree);
+  EXPECT_EQ(render::light_sampler_in_use(LightSampler::automatic, render::k_auto_light_tree_min_lights), LightSampler::tree);
+  EXPECT_EQ(render::light_sampler_in_use(LightSampler::automatic, render::k_auto_light_tree_min_lights - 1), LightSampler::power);
+  EXPECT_EQ(render::light_sampler_in_use(LightSampler::power, 822), LightSampler::power);
+  EXPECT_EQ(render::light_sampler_in_use(LightSampler::tree, 2), LightSampler::tree);
 }
 
 TEST(BuiltinNightStreet, CameraCarsAndLanternsMoveWithinSixteenFrames) {

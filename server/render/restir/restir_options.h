@@ -32,10 +32,11 @@ enum class LayerMode : uint32_t {
   uniform = gpu::LAYER_MODE_UNIFORM,
   no_depth_ranges = gpu::LAYER_MODE_NO_RANGES,
 };
+// How next-event estimation chooses a light: by power (the alias table), by the light tree
+// (render/light_tree.h; the device's SPEC_LIGHT_TREE), or automatic: the tree where the scene has
+// many bounded lights (render/light_sampler_choice.h).
+enum class LightSampler : uint32_t { power = 0, tree = 1, automatic = 2 };
 // LoD-aware reuse (the LOD paper; docs/ARCHITECTURE.md, "Surface resolver"): uv where the scene has
-// How next-event estimation chooses a light: by power (the alias table), or by the light tree
-// (render/light_tree.h): the device's SPEC_LIGHT_TREE.
-enum class LightSampler : uint32_t { power = 0, tree = 1 };
 // LoD groups (automatic), off (a LoD switch refuses the shifts of its points), or uv (the vertex mapping tau).
 enum class LodMapping : uint32_t { automatic = 0, off = 1, uv = 2 };
 // The path vertices tau maps (LOD Fig. 5 ablation): a mask of the passes' LOD_VERTEX_* bits.
@@ -115,7 +116,7 @@ struct RestirOptions {
   // initial_candidates); a value equal to initial_candidates turns the boost off.
   uint32_t disocclusion_initial_candidates = 0;
   LodMapping lod_mapping = LodMapping::automatic;
-  LightSampler light_sampler = LightSampler::power;
+  LightSampler light_sampler = LightSampler::automatic;
   bool lod_matching = true;          // Alg. 1 settles UVs that several points share (else they refuse)
   LodVertices lod_vertices = LodVertices::both;
 
