@@ -37,7 +37,7 @@ Pass::Pass(const gpu::Context& ctx, const GpuScene* scene, SceneUse use, const c
            std::vector<gpu::SpecConstant> spec, uint32_t push_bytes)
     : scene_(scene), use_(use), push_bytes_(push_bytes), resources_(std::move(resources)) {
   std::vector<gpu::Binding> bindings;
-  const bool punctual = scene_ && use_.lights && scene_->has_punctual();
+  const bool punctual = scene_ && (use_.lights || use_.shifts) && scene_->has_punctual();
   if (scene_) bindings = scene_->bindings(use_.lights, use_.history);
   for (const auto& r : resources_) bindings.push_back({r.binding, r.type});
   if (scene_ && use_.history && scene_->lod_mapping_compiled()) spec.push_back({SPEC_LOD_MAPPING, VK_TRUE});

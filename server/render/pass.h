@@ -54,6 +54,9 @@ PassResource history_previous(uint32_t binding, const PingPong& history);
 struct SceneUse {
   bool lights = false;   // emitter tables (light sampling)
   bool history = false;  // the previous frame's TLAS and instance records
+  // The pass shifts paths (restir/path_space.glsl) without sampling lights: a path that ends at a
+  // punctual light is evaluated there as one (SPEC_PUNCTUAL; the records are read by address).
+  bool shifts = false;
 };
 
 class Pass {

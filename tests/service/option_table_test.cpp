@@ -285,7 +285,8 @@ void OptionChangeTest::check_every_change(options::Group group) {
   };
   // The value it changes to, where the row's other end of the range would show nothing.
   const std::map<std::string, std::string> values = {{"suffix", "fail"},        {"view_layer", "1"},      {"layers", "1"},
-                                                     {"silhouette_band", "0"},  {"reveal_lookahead", "0"}, {"still_confidence_cap", "1"}};
+                                                     {"silhouette_band", "0"},  {"reveal_lookahead", "0"}, {"still_confidence_cap", "1"},
+                                                     {"light_sampler", "tree"}};  // auto is power on carousel
   const std::set<std::string> lod = {"lod_mapping", "lod_matching", "lod_vertices"};
   const std::vector<std::string> methods = {"restir-gather", "restir-splat", "restir-multilayer", "pt"};
   std::map<std::string, Rendered> controls;

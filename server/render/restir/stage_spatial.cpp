@@ -54,10 +54,10 @@ class SpatialStage : public Stage {
         // Two records per pixel and pair offset; without pairs it is never read (one record).
         pair_shifts_(device_storage(state.shared.ctx, sizeof(gpu::PairShift) * (pairs_ ? 2 * pair_offsets_ * state.pixels : 1),
                                     "spatial pair shifts")),
-        pass_(state.shared.ctx, &state.shared.scene, SceneUse{}, "restir_spatial", resources(Access::read),
+        pass_(state.shared.ctx, &state.shared.scene, SceneUse{.shifts = true}, "restir_spatial", resources(Access::read),
               spatial_spec(compact_, pair_offsets_), sizeof(gpu::SpatialDispatch)) {
     if (pairs_)
-      pairs_pass_ = std::make_unique<Pass>(state.shared.ctx, &state.shared.scene, SceneUse{}, "restir_spatial_pairs",
+      pairs_pass_ = std::make_unique<Pass>(state.shared.ctx, &state.shared.scene, SceneUse{.shifts = true}, "restir_spatial_pairs",
                                            resources(Access::write), spatial_spec(false, pair_offsets_));
   }
   uint32_t timed_passes() const override { return 1; }
