@@ -56,8 +56,9 @@ AutoCalibration::~AutoCalibration() = default;
 render::FrameResult AutoCalibration::render(const scene::FrameState& frame, uint32_t frame_index) {
   const uint32_t k = frames_++;
   const bool measured = k >= k_auto_first_measured;
-  std::vector<render::FrameResult> pt;
-  if (k == 0 || measured) pt = {pt_[0]->render(frame, frame_index), pt_[1]->render(frame, frame_index)};
+  std::vector<render::FrameResult> pt;  // pt's two runs, where it renders
+  if (k == 0 || measured)
+    for (const auto& run : pt_) pt.push_back(run->render(frame, frame_index));
   if (k == 0) {
     // pt's error per sample: how hard the light is to find, which sets restir-gather's cap before
     // restir-gather's runs start (on this same frame, so that its first run is what a restir-gather
