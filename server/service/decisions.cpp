@@ -325,9 +325,7 @@ std::vector<v1::Decision> decide(const render::MethodSpec& method, const std::st
   {
     // light_sampler auto: the tree where the scene has many bounded lights (render/light_sampler_choice.h).
     const uint64_t bounded = scene.emissive_triangles() + point_and_spot;
-    const render::LightSampler asked_sampler = eff.light_sampler() == v1::LIGHT_SAMPLER_TREE    ? render::LightSampler::tree
-                                               : eff.light_sampler() == v1::LIGHT_SAMPLER_POWER ? render::LightSampler::power
-                                                                                                : render::LightSampler::automatic;
+    const render::LightSampler asked_sampler = options.light_sampler;  // the option table's mapping
     const bool tree = render::light_sampler_in_use(asked_sampler, bounded) == render::LightSampler::tree;
     const bool auto_tree = render::light_sampler_in_use(render::LightSampler::automatic, bounded) == render::LightSampler::tree;
     const std::string count = std::to_string(bounded) + " bounded lights (emissive triangles, point and spot lights)";
